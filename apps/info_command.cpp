@@ -1,0 +1,60 @@
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "apps/commands.h"
+#include "core/sample_set.h"
+
+namespace lucent {
+namespace {
+
+struct Stats {
+    double min = HUGE_VAL, max = -HUGE_VAL, sum = 0;
+    size_t n = 0;
+    void add(double v) { min = std::min(min, v); max = std::max(max, v); sum += v; ++n; }
+    void print(const char* label) const {
+        if (n) std::printf("  %-22s min %-12.5g mean %-12.5g max %.5g\n", label, min, sum / double(n), max);
+    }
+};
+
+}  // namespace
+
+Command addInfoCommand(CLI::App& app) {
+    auto file = std::make_shared<std::string>();
+    CLI::App* sub = app.add_subcommand("info", "Describe what a sample file holds");
+    sub->add_option("file", *file, "Sample file (.lsf)")->required();
+    return [file] {
+        const SampleSet s = readSampleFile(*file);
+        const SampleParameters& p = s.parameters;
+        std::printf("%s: Lucent sample file, version %u\n", file->c_str(), kSampleFileVersion);
+        std::printf("  samples                %zu\n", s.size());
+        std::printf("  SH order               %u (%u coefficients x %u channel%s)\n", s.shOrder, s.shOrder * s.shOrder,
+                    s.channels, s.channels > 1 ? "s" : "");
+        std::printf("  bounds                 [%g %g %g] - [%g %g %g]\n", s.bounds.min.x, s.bounds.min.y,
+                    s.bounds.min.z, s.bounds.max.x, s.bounds.max.y, s.bounds.max.z);
+        std::printf("  scene fingerprint      %016llx\n", (unsigned long long)s.sceneFingerprint);
+        std::printf("  seed                   %llu\n", (unsigned long long)p.seed);
+        std::printf("  directions             %u heuristic, %u projection\n", p.heuristicDirections, p.projectionDirections);
+        std::printf("  layers                 %u, spacing %g\n", p.layerCount, p.layerSpacing);
+        std::printf("  mean Poisson radius    %g\n", p.meanRadius);
+        std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
+        std::printf("  cull epsilon           %g\n", p.cullEpsilon);
+        Stats radius, width, sigmaS, dc, error;
+        const size_t stride = s.coefficientsPerSample();
+        for (size_t i = 0; i < s.size(); ++i) {
+            radius.add(s.radii[i]);
+            width.add(s.widths[i]);
+            sigmaS.add(s.scattering[i].g);
+            // Y_00 = 1 / (2 sqrt(pi)): the mean of exp(-tau) over directions is c_00 / (2 sqrt(pi)).
+            dc.add(s.sh[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
+            error.add(s.truncationError[i]);
+        }
+        radius.print("Poisson radius");
+        width.print("Gaussian sigma");
+        sigmaS.print("sigma_s (green)");
+        dc.print("mean transmittance");
+        error.print("SH truncation error");
+    };
+}
+
+}  // namespace lucent

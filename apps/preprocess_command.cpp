@@ -1,0 +1,62 @@
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "apps/commands.h"
+#include "core/sample_set.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+#include "preprocess/preprocessor.h"
+
+namespace lucent {
+
+Command addPreprocessCommand(CLI::App& app) {
+    struct Options {
+        std::string scene, quality = "default";
+        int samples = 0, directions = 0, projectionDirections = 0, shOrder = 0, threads = 0;
+        uint64_t seed = 1;
+        double widthFactor = 0.0;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* sub = app.add_subcommand("preprocess", "Sample every translucent object of a scene and write its sample file");
+    sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+    sub->add_option("--quality", o->quality, "Preset: draft, default or high")->check(CLI::IsMember({"draft", "default", "high"}));
+    sub->add_option("--samples", o->samples, "Target sample count (overrides the preset)")->check(CLI::Range(1, 50000000));
+    sub->add_option("--directions", o->directions, "Directions d of the density heuristic")->check(CLI::Range(6, 65536));
+    sub->add_option("--projection-directions", o->projectionDirections, "Directions of the SH projection")->check(CLI::Range(16, 65536));
+    sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")->check(CLI::Range(1, 16));
+    sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file");
+    sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+    sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(CLI::Range(0.05, 20.0));
+    return [o] {
+        PreprocessSettings settings = qualityPreset(o->quality);
+        if (o->samples) settings.samples = o->samples;
+        if (o->directions) settings.heuristicDirections = o->directions;
+        if (o->projectionDirections) settings.projectionDirections = o->projectionDirections;
+        if (o->shOrder) settings.shOrder = o->shOrder;
+        if (o->widthFactor > 0.0) settings.widthFactor = o->widthFactor;
+        settings.seed = o->seed;
+        std::unique_ptr<tbb::global_control> threads;
+        if (o->threads > 0)
+            threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
+
+        const SceneDesc scene = parseScene(o->scene);
+        std::vector<std::string> warnings;
+        const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+        printWarnings(warnings);
+        for (const VolumeObject& object : objects) {
+            PreprocessTimings timings;
+            const SampleSet samples = preprocessObject(object, settings, &timings);
+            writeSampleFile(object.desc().samples, samples);
+            std::fprintf(stderr,
+                         "lucent: %s: %zu samples in %.2f s (layers %.2f, heuristic %.2f, divergence %.2f, "
+                         "Poisson disks %.2f, SH %.2f) -> %s\n",
+                         object.desc().name.c_str(), samples.size(), timings.total(), timings.layers,
+                         timings.firstMoments, timings.divergence, timings.poissonDisk, timings.projection,
+                         object.desc().samples.string().c_str());
+        }
+    };
+}
+
+}  // namespace lucent

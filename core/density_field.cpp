@@ -1,0 +1,187 @@
+#include "core/density_field.h"
+
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace lucent {
+
+// ---- layers -------------------------------------------------------------------
+
+LayeredDensity::LayeredDensity(int axis, std::vector<double> values, const Bounds3& objectBounds)
+    : axis_(axis), values_(std::move(values)) {
+    lo_ = objectBounds.min[axis];
+    width_ = std::max(objectBounds.extent()[axis], 1e-300) / double(values_.size());
+}
+
+int LayeredDensity::slabOf(double c) const {
+    const double s = std::floor((c - lo_) / width_);
+    return int(std::clamp(s, 0.0, double(values_.size() - 1)));
+}
+
+double LayeredDensity::at(const Vec3& p) const { return values_[slabOf(p[axis_])]; }
+
+double LayeredDensity::integrate(const Vec3& a, const Vec3& b) const {
+    const double length = glm::length(b - a);
+    const double ca = a[axis_], cb = b[axis_];
+    if (length == 0.0) return 0.0;
+    int sa = slabOf(ca), sb = slabOf(cb);
+    if (sa == sb) return values_[sa] * length;
+    // Walk the slabs between the two ends; the fraction of the segment in each slab
+    // is the fraction of the coordinate range it covers.
+    const double range = cb - ca;
+    double total = 0.0, prev = 0.0;
+    const int step = sb > sa ? 1 : -1;
+    for (int s = sa; s != sb; s += step) {
+        const double plane = lo_ + width_ * (step > 0 ? s + 1 : s);
+        const double f = std::clamp((plane - ca) / range, prev, 1.0);
+        total += values_[s] * (f - prev) * length;
+        prev = f;
+    }
+    total += values_[sb] * (1.0 - prev) * length;
+    return total;
+}
+
+double LayeredDensity::minimum() const { return *std::min_element(values_.begin(), values_.end()); }
+double LayeredDensity::maximum() const { return *std::max_element(values_.begin(), values_.end()); }
+
+// ---- grid ---------------------------------------------------------------------
+
+GridDensity::GridDensity(int nx, int ny, int nz, const Bounds3& bounds, std::vector<float> values)
+    : nx_(nx), ny_(ny), nz_(nz), bounds_(bounds), values_(std::move(values)) {
+    const Vec3 cells(std::max(nx - 1, 1), std::max(ny - 1, 1), std::max(nz - 1, 1));
+    cell_ = bounds.extent() / cells;
+    auto [lo, hi] = std::minmax_element(values_.begin(), values_.end());
+    min_ = std::min(0.0, double(*lo));  // zero outside the lattice
+    max_ = *hi;
+}
+
+double GridDensity::atIndexSpace(const Vec3& u) const {
+    auto split = [](double x, int n, int& i, double& f) {
+        if (n == 1) { i = 0; f = 0.0; return; }
+        x = std::clamp(x, 0.0, double(n - 1));
+        i = std::min(int(x), n - 2);
+        f = x - i;
+    };
+    int i, j, k;
+    double fx, fy, fz;
+    split(u.x, nx_, i, fx);
+    split(u.y, ny_, j, fy);
+    split(u.z, nz_, k, fz);
+    const int i1 = std::min(i + 1, nx_ - 1), j1 = std::min(j + 1, ny_ - 1), k1 = std::min(k + 1, nz_ - 1);
+    const double c00 = node(i, j, k) * (1 - fx) + node(i1, j, k) * fx;
+    const double c10 = node(i, j1, k) * (1 - fx) + node(i1, j1, k) * fx;
+    const double c01 = node(i, j, k1) * (1 - fx) + node(i1, j, k1) * fx;
+    const double c11 = node(i, j1, k1) * (1 - fx) + node(i1, j1, k1) * fx;
+    return (c00 * (1 - fy) + c10 * fy) * (1 - fz) + (c01 * (1 - fy) + c11 * fy) * fz;
+}
+
+double GridDensity::at(const Vec3& p) const {
+    if (!bounds_.contains(p)) return 0.0;
+    return atIndexSpace((p - bounds_.min) / cell_);
+}
+
+double GridDensity::integrate(const Vec3& a, const Vec3& b) const {
+    const double length = glm::length(b - a);
+    if (length == 0.0) return 0.0;
+    // Clip the segment to the lattice box (slab test), in index space.
+    const Vec3 ua = (a - bounds_.min) / cell_, ub = (b - bounds_.min) / cell_;
+    const Vec3 hi(nx_ - 1, ny_ - 1, nz_ - 1);
+    double s0 = 0.0, s1 = 1.0;
+    for (int ax = 0; ax < 3; ++ax) {
+        const double d = ub[ax] - ua[ax];
+        if (d == 0.0) {
+            if (ua[ax] < 0.0 || ua[ax] > hi[ax]) return 0.0;
+            continue;
+        }
+        double e0 = (0.0 - ua[ax]) / d, e1 = (hi[ax] - ua[ax]) / d;
+        if (e0 > e1) std::swap(e0, e1);
+        s0 = std::max(s0, e0);
+        s1 = std::min(s1, e1);
+    }
+    if (s0 >= s1) return 0.0;
+    // Collect every parameter where the segment crosses a lattice plane; between two
+    // of them the trilinear field is a cubic in s, which Simpson's rule integrates exactly.
+    thread_local std::vector<double> cuts;
+    cuts.assign({s0, s1});
+    for (int ax = 0; ax < 3; ++ax) {
+        const double d = ub[ax] - ua[ax];
+        if (d == 0.0) continue;
+        const double ca = ua[ax] + s0 * d, cb = ua[ax] + s1 * d;
+        const int first = int(std::ceil(std::min(ca, cb))), last = int(std::floor(std::max(ca, cb)));
+        for (int plane = first; plane <= last; ++plane) {
+            const double s = (plane - ua[ax]) / d;
+            if (s > s0 && s < s1) cuts.push_back(s);
+        }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    double total = 0.0;
+    for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const double p = cuts[c], q = cuts[c + 1];
+        if (q <= p) continue;
+        auto f = [&](double s) { return atIndexSpace(ua + s * (ub - ua)); };
+        total += (q - p) / 6.0 * (f(p) + 4.0 * f(0.5 * (p + q)) + f(q));
+    }
+    return total * length;
+}
+
+std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int nx, int ny, int nz,
+                                         const Bounds3& bounds) {
+    const std::string name = file.string();
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    if (!in) throw Error(name, "cannot open density grid file");
+    const size_t expected = size_t(nx) * ny * nz * sizeof(float);
+    const size_t actual = size_t(in.tellg());
+    if (actual != expected)
+        throw Error(name, "grid file holds " + std::to_string(actual) + " bytes but dims [" + std::to_string(nx) +
+                              ", " + std::to_string(ny) + ", " + std::to_string(nz) + "] need " +
+                              std::to_string(expected));
+    std::vector<float> values(size_t(nx) * ny * nz);
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(values.data()), std::streamsize(expected));
+    if (!in) throw Error(name, "cannot read density grid file");
+    for (size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i]) || values[i] < 0.0f)
+            throw Error(name, "density value " + std::to_string(i) + " is negative or not finite");
+    return std::make_unique<GridDensity>(nx, ny, nz, bounds, std::move(values));
+}
+
+std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName) {
+    const std::string name = file.string();
+    openvdb::initialize();
+    openvdb::FloatGrid::Ptr grid;
+    try {
+        openvdb::io::File vdb(name);
+        vdb.open();
+        openvdb::GridBase::Ptr base = vdb.readGrid(gridName);
+        vdb.close();
+        grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    } catch (const std::exception& e) {
+        throw Error(name, std::string("cannot read OpenVDB grid '") + gridName + "': " + e.what());
+    }
+    if (!grid) throw Error(name, "grid '" + gridName + "' is not a float grid");
+    if (!grid->transform().isLinear()) throw Error(name, "grid '" + gridName + "' has a non-linear transform");
+    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    if (box.empty()) throw Error(name, "grid '" + gridName + "' has no active voxels");
+    const openvdb::Coord dim = box.dim();
+    std::vector<float> values(size_t(dim.x()) * dim.y() * dim.z());
+    auto access = grid->getConstAccessor();
+    size_t n = 0;
+    for (int k = box.min().z(); k <= box.max().z(); ++k)
+        for (int j = box.min().y(); j <= box.max().y(); ++j)
+            for (int i = box.min().x(); i <= box.max().x(); ++i) {
+                const float v = access.getValue(openvdb::Coord(i, j, k));
+                if (!std::isfinite(v) || v < 0.0f) throw Error(name, "grid '" + gridName + "' holds a negative or non-finite density");
+                values[n++] = v;
+            }
+    const openvdb::Vec3d lo = grid->indexToWorld(box.min()), hi = grid->indexToWorld(box.max());
+    Bounds3 bounds;
+    bounds.extend(Vec3(lo.x(), lo.y(), lo.z()));
+    bounds.extend(Vec3(hi.x(), hi.y(), hi.z()));
+    return std::make_unique<GridDensity>(dim.x(), dim.y(), dim.z(), bounds, std::move(values));
+}
+
+}  // namespace lucent

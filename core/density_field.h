@@ -1,0 +1,76 @@
+#pragma once
+// Spatially varying density: the extinction at x is sigma_t * density(x)
+// (DESIGN.md). Each field integrates itself exactly along a segment, so optical
+// depth has no marching error: piecewise constant fields split at their slab
+// planes, trilinear grids split at voxel faces where the integrand is a cubic.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace lucent {
+
+class DensityField {
+public:
+    virtual ~DensityField() = default;
+    virtual double at(const Vec3& p) const = 0;
+    // Integral of density over the straight segment from a to b (per unit length).
+    virtual double integrate(const Vec3& a, const Vec3& b) const = 0;
+    // Smallest and largest value anywhere: bounds on light penetration depth.
+    virtual double minimum() const = 0;
+    virtual double maximum() const = 0;
+};
+
+class ConstantDensity final : public DensityField {
+public:
+    double at(const Vec3&) const override { return 1.0; }
+    double integrate(const Vec3& a, const Vec3& b) const override { return glm::length(b - a); }
+    double minimum() const override { return 1.0; }
+    double maximum() const override { return 1.0; }
+};
+
+// The object's bounding box cut along one axis into equal slabs, slab k holding values[k].
+class LayeredDensity final : public DensityField {
+public:
+    LayeredDensity(int axis, std::vector<double> values, const Bounds3& objectBounds);
+    double at(const Vec3& p) const override;
+    double integrate(const Vec3& a, const Vec3& b) const override;
+    double minimum() const override;
+    double maximum() const override;
+
+private:
+    int slabOf(double coordinate) const;
+    int axis_;
+    std::vector<double> values_;
+    double lo_, width_;
+};
+
+// Values at the nodes of a regular nx*ny*nz lattice spanning bounds (x fastest),
+// interpolated trilinearly; zero outside the bounds.
+class GridDensity final : public DensityField {
+public:
+    GridDensity(int nx, int ny, int nz, const Bounds3& bounds, std::vector<float> values);
+    double at(const Vec3& p) const override;
+    double integrate(const Vec3& a, const Vec3& b) const override;
+    double minimum() const override { return min_; }
+    double maximum() const override { return max_; }
+
+private:
+    double node(int i, int j, int k) const { return values_[(size_t(k) * ny_ + j) * nx_ + i]; }
+    double atIndexSpace(const Vec3& u) const;
+    int nx_, ny_, nz_;
+    Bounds3 bounds_;
+    Vec3 cell_;
+    std::vector<float> values_;
+    double min_ = 0.0, max_ = 0.0;
+};
+
+// Raw little-endian float32 file; the size must match dims exactly.
+std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int nx, int ny, int nz,
+                                         const Bounds3& bounds);
+// A float grid of an OpenVDB file, densified over its active bounding box.
+std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName);
+
+}  // namespace lucent

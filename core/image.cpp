@@ -1,0 +1,139 @@
+#include "core/image.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace lucent {
+namespace {
+
+glm::vec3 sanitized(glm::vec3 c) {
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(c[i]) || c[i] < 0.0f) c[i] = 0.0f;
+    return c;
+}
+
+void writePfm(const std::filesystem::path& file, const Image& image) {
+    AtomicFile out(file);
+    auto& s = out.stream();
+    s << "PF\n" << image.width << " " << image.height << "\n-1.0\n";  // negative scale: little endian
+    for (int y = image.height - 1; y >= 0; --y)                       // PFM stores rows bottom to top
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec3 c = sanitized(image.at(x, y));
+            s.write(reinterpret_cast<const char*>(&c[0]), 3 * sizeof(float));
+        }
+    out.commit();
+}
+
+void writeExr(const std::filesystem::path& file, const Image& image) {
+    AtomicFile out(file);
+    std::vector<glm::vec3> clean(image.pixels.size());
+    std::transform(image.pixels.begin(), image.pixels.end(), clean.begin(), sanitized);
+    try {
+        Imf::Header header(image.width, image.height);
+        for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        Imf::OutputFile exr(out.temporaryPath().c_str(), header);
+        Imf::FrameBuffer frame;
+        const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
+        char* base = reinterpret_cast<char*>(clean.data());
+        frame.insert("R", Imf::Slice(Imf::FLOAT, base + 0, xStride, yStride));
+        frame.insert("G", Imf::Slice(Imf::FLOAT, base + 4, xStride, yStride));
+        frame.insert("B", Imf::Slice(Imf::FLOAT, base + 8, xStride, yStride));
+        exr.setFrameBuffer(frame);
+        exr.writePixels(image.height);
+    } catch (const std::exception& e) {
+        throw Error(file.string(), std::string("cannot write EXR: ") + e.what());
+    }
+    out.commit();
+}
+
+float autoExposure(const Image& image) {
+    std::vector<float> luminance;
+    luminance.reserve(image.pixels.size());
+    for (const auto& p : image.pixels) {
+        const glm::vec3 c = sanitized(p);
+        const float l = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+        if (l > 0.0f) luminance.push_back(l);
+    }
+    if (luminance.empty()) return 1.0f;
+    const size_t k = std::min(luminance.size() - 1, size_t(0.995 * double(luminance.size())));
+    std::nth_element(luminance.begin(), luminance.begin() + long(k), luminance.end());
+    return 1.0f / luminance[k];
+}
+
+unsigned char toSrgb8(float linear) {
+    linear = std::clamp(linear, 0.0f, 1.0f);
+    const float s = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+    return static_cast<unsigned char>(std::lround(s * 255.0f));
+}
+
+void writePng(const std::filesystem::path& file, const Image& image, float exposure) {
+    if (!(exposure > 0.0f) || !std::isfinite(exposure)) exposure = autoExposure(image);
+    std::vector<unsigned char> rgb(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec3 c = sanitized(image.pixels[i]) * exposure;
+        for (int k = 0; k < 3; ++k) rgb[3 * i + k] = toSrgb8(c[k]);
+    }
+    AtomicFile out(file);
+    out.stream().close();
+    FILE* fp = std::fopen(out.temporaryPath().c_str(), "wb");
+    if (!fp) throw Error(file.string(), "cannot write PNG");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        std::fclose(fp);
+        throw Error(file.string(), "cannot write PNG");
+    }
+    png_init_io(png, fp);
+    png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    for (int y = 0; y < image.height; ++y) png_write_row(png, rgb.data() + size_t(y) * image.width * 3);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    const bool closed = std::fclose(fp) == 0;
+    if (!closed) throw Error(file.string(), "cannot write PNG (disk full?)");
+    out.commit();
+}
+
+}  // namespace
+
+void writeImage(const std::filesystem::path& file, const Image& image, float exposure) {
+    const std::string ext = file.extension().string();
+    if (ext == ".pfm") writePfm(file, image);
+    else if (ext == ".exr") writeExr(file, image);
+    else if (ext == ".png") writePng(file, image, exposure);
+    else throw Error(file.string(), "unknown image format '" + ext + "' (use .png, .pfm or .exr)");
+}
+
+Image readPfm(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(name, "cannot open PFM file");
+    std::string magic;
+    int w = 0, h = 0;
+    double scale = 0.0;
+    in >> magic >> w >> h >> scale;
+    in.get();
+    if (magic != "PF" || w <= 0 || h <= 0 || scale >= 0.0) throw Error(name, "not a little-endian RGB PFM file");
+    Image image(w, h);
+    for (int y = h - 1; y >= 0; --y)
+        for (int x = 0; x < w; ++x) in.read(reinterpret_cast<char*>(&image.at(x, y)[0]), 3 * sizeof(float));
+    if (!in) throw Error(name, "PFM file is truncated");
+    return image;
+}
+
+}  // namespace lucent

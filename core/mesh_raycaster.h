@@ -1,0 +1,51 @@
+#pragma once
+// Ray queries against a closed mesh through CGAL's AABB tree: every boundary
+// crossing along a ray (concave meshes are crossed several times), the parts of a
+// ray that lie inside, point containment and distance to the surface.
+#include <memory>
+#include <vector>
+
+#include "core/math.h"
+#include "core/triangle_mesh.h"
+
+namespace lucent {
+
+struct Crossing {
+    double t;     // distance along the (unit) ray direction
+    bool exits;   // true when the ray leaves the enclosed volume here
+    uint32_t face;
+};
+
+struct Interval {
+    double t0, t1;
+};
+
+class MeshRaycaster {
+public:
+    explicit MeshRaycaster(const TriangleMesh& mesh);
+    ~MeshRaycaster();
+    MeshRaycaster(MeshRaycaster&&) noexcept;
+    MeshRaycaster& operator=(MeshRaycaster&&) noexcept;
+
+    // All crossings with t > 0, sorted, coincident hits on shared edges merged.
+    void crossings(const Vec3& origin, const Vec3& dir, std::vector<Crossing>& out) const;
+
+    // The parts of origin + t dir, 0 <= t <= tMax, inside the mesh, sorted.
+    // Returns false only when the ray is never inside.
+    bool insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out) const;
+
+    // Distance to the first crossing, or infinity.
+    double firstHit(const Vec3& origin, const Vec3& dir) const;
+
+    bool contains(const Vec3& p) const;
+    double distanceToSurface(const Vec3& p) const;
+    const Bounds3& bounds() const { return bounds_; }
+    Vec3 unitNormal(uint32_t face) const;
+
+private:
+    struct Tree;
+    std::unique_ptr<Tree> tree_;
+    Bounds3 bounds_;
+};
+
+}  // namespace lucent

@@ -1,0 +1,167 @@
+#include "core/sample_set.h"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/fingerprint.h"
+
+static_assert(std::endian::native == std::endian::little, "the sample file is little endian; add byte swapping");
+
+namespace lucent {
+namespace {
+
+constexpr char kMagic[8] = {'L', 'U', 'C', 'E', 'N', 'T', 'S', 'F'};
+
+class Writer {
+public:
+    template <class T>
+    void put(const T& v) {
+        const auto* p = reinterpret_cast<const char*>(&v);
+        bytes.insert(bytes.end(), p, p + sizeof(T));
+    }
+    template <class T>
+    void putArray(const std::vector<T>& v) {
+        const auto* p = reinterpret_cast<const char*>(v.data());
+        bytes.insert(bytes.end(), p, p + v.size() * sizeof(T));
+    }
+    std::vector<char> bytes;
+};
+
+class Reader {
+public:
+    Reader(const std::vector<char>& bytes, const std::string& file) : bytes_(bytes), file_(file) {}
+    template <class T>
+    T get() {
+        T v;
+        need(sizeof(T));
+        std::memcpy(&v, bytes_.data() + offset_, sizeof(T));
+        offset_ += sizeof(T);
+        return v;
+    }
+    template <class T>
+    std::vector<T> getArray(size_t count) {
+        need(count * sizeof(T));
+        std::vector<T> v(count);
+        std::memcpy(v.data(), bytes_.data() + offset_, count * sizeof(T));
+        offset_ += count * sizeof(T);
+        return v;
+    }
+    size_t offset() const { return offset_; }
+
+private:
+    void need(size_t n) const {
+        if (offset_ + n > bytes_.size()) throw Error(file_, "sample file is truncated");
+    }
+    const std::vector<char>& bytes_;
+    const std::string& file_;
+    size_t offset_ = 0;
+};
+
+template <class T>
+bool allFinite(const std::vector<T>& v) {
+    const auto* p = reinterpret_cast<const float*>(v.data());
+    const size_t n = v.size() * sizeof(T) / sizeof(float);
+    for (size_t i = 0; i < n; ++i)
+        if (!std::isfinite(p[i])) return false;
+    return true;
+}
+
+}  // namespace
+
+void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
+    Writer w;
+    w.bytes.insert(w.bytes.end(), kMagic, kMagic + 8);
+    w.put(kSampleFileVersion);
+    w.put(uint64_t(s.size()));
+    w.put(s.shOrder);
+    w.put(s.channels);
+    w.put(s.sceneFingerprint);
+    for (int i = 0; i < 3; ++i) w.put(float(s.bounds.min[i]));
+    for (int i = 0; i < 3; ++i) w.put(float(s.bounds.max[i]));
+    const SampleParameters& p = s.parameters;
+    w.put(p.seed);
+    w.put(p.heuristicDirections);
+    w.put(p.projectionDirections);
+    w.put(p.layerCount);
+    w.put(p.layerSpacing);
+    w.put(p.meanRadius);
+    w.put(p.widthFactor);
+    w.put(p.cullEpsilon);
+    w.putArray(s.positions);
+    w.putArray(s.radii);
+    w.putArray(s.widths);
+    w.putArray(s.scattering);
+    w.putArray(s.sh);
+    w.putArray(s.truncationError);
+    Fingerprint checksum;
+    checksum.addBytes(w.bytes.data(), w.bytes.size());
+    w.put(checksum.value());
+
+    AtomicFile out(file);
+    out.stream().write(w.bytes.data(), std::streamsize(w.bytes.size()));
+    out.commit();
+}
+
+SampleSet readSampleFile(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(name, "cannot open sample file");
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
+        throw Error(name, "not a Lucent sample file (wrong magic number)");
+    Reader r(bytes, name);
+    r.getArray<char>(8);
+    const uint32_t version = r.get<uint32_t>();
+    if (version != kSampleFileVersion)
+        throw Error(name, "sample file version " + std::to_string(version) + " is not supported (expected " +
+                              std::to_string(kSampleFileVersion) + "); run lucent preprocess again");
+    SampleSet s;
+    const uint64_t count = r.get<uint64_t>();
+    s.shOrder = r.get<uint32_t>();
+    s.channels = r.get<uint32_t>();
+    if (s.shOrder < 1 || s.shOrder > 16) throw Error(name, "SH order " + std::to_string(s.shOrder) + " is out of range");
+    if (s.channels != 1 && s.channels != 3) throw Error(name, "channel count must be 1 or 3");
+    s.sceneFingerprint = r.get<uint64_t>();
+    float b[6];
+    for (float& v : b) v = r.get<float>();
+    s.bounds.min = Vec3(b[0], b[1], b[2]);
+    s.bounds.max = Vec3(b[3], b[4], b[5]);
+    SampleParameters& p = s.parameters;
+    p.seed = r.get<uint64_t>();
+    p.heuristicDirections = r.get<uint32_t>();
+    p.projectionDirections = r.get<uint32_t>();
+    p.layerCount = r.get<uint32_t>();
+    p.layerSpacing = r.get<float>();
+    p.meanRadius = r.get<float>();
+    p.widthFactor = r.get<float>();
+    p.cullEpsilon = r.get<float>();
+    // The counts fix the size: check it before allocating anything they claim.
+    const uint64_t perSample = sizeof(glm::vec3) * 2 + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
+    const uint64_t expected = r.offset() + count * perSample + sizeof(uint64_t);
+    if (count > (uint64_t(1) << 40) / perSample || bytes.size() != expected)
+        throw Error(name, "sample file holds " + std::to_string(bytes.size()) + " bytes but its counts need " +
+                              std::to_string(expected) + " (truncated or corrupted)");
+    s.positions = r.getArray<glm::vec3>(count);
+    s.radii = r.getArray<float>(count);
+    s.widths = r.getArray<float>(count);
+    s.scattering = r.getArray<glm::vec3>(count);
+    s.sh = r.getArray<float>(count * s.coefficientsPerSample());
+    s.truncationError = r.getArray<float>(count);
+    const size_t payload = r.offset();
+    const uint64_t stored = r.get<uint64_t>();
+    Fingerprint checksum;
+    checksum.addBytes(bytes.data(), payload);
+    if (checksum.value() != stored) throw Error(name, "sample file checksum does not match (corrupted)");
+    if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.scattering) ||
+        !allFinite(s.sh) || !allFinite(s.truncationError))
+        throw Error(name, "sample file holds a non-finite value");
+    for (size_t i = 0; i < count; ++i)
+        if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f)) throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");
+    return s;
+}
+
+}  // namespace lucent

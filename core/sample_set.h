@@ -1,0 +1,52 @@
+#pragma once
+// The preprocessor's product and the runtime's input: Gaussian samples inside
+// one object, each carrying the SH projection of its directional attenuation
+// exp(-tau(b_i, w)) (thesis 3.3). Stored in the versioned binary sample file of
+// DESIGN.md (see docs/sample-file.md for the byte layout).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace lucent {
+
+struct SampleParameters {
+    uint64_t seed = 1;
+    uint32_t heuristicDirections = 64;
+    uint32_t projectionDirections = 256;
+    uint32_t layerCount = 0;
+    float layerSpacing = 0.0f;   // scene units between offset layers
+    float meanRadius = 0.0f;     // r of thesis 3.2.4
+    float widthFactor = 1.0f;    // Gaussian FWHM = widthFactor * Poisson radius (thesis 3.3.2)
+    float cullEpsilon = 1e-3f;   // samples receiving less than this fraction of full light are culled
+};
+
+struct SampleSet {
+    uint32_t shOrder = 5;        // bands; shOrder^2 coefficients per channel
+    uint32_t channels = 1;       // 1 when sigma_t is grey, 3 when it differs per channel
+    uint64_t sceneFingerprint = 0;
+    Bounds3 bounds;
+    SampleParameters parameters;
+
+    std::vector<glm::vec3> positions;
+    std::vector<float> radii;          // Poisson-disk radius
+    std::vector<float> widths;         // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
+    std::vector<glm::vec3> scattering; // sigma_s(b_i) per channel
+    std::vector<float> sh;             // [sample][channel][coefficient]
+    std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the SH order misses
+
+    size_t size() const { return positions.size(); }
+    size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
+};
+
+inline constexpr uint32_t kSampleFileVersion = 1;
+
+// Writes atomically (temporary file + rename).
+void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples);
+// Throws Error("FILE: problem") on a wrong magic or version, truncation, a size that
+// does not match the counts, a bad checksum or a non-finite value.
+SampleSet readSampleFile(const std::filesystem::path& file);
+
+}  // namespace lucent

@@ -1,0 +1,284 @@
+#include "core/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/fingerprint.h"
+
+namespace lucent {
+namespace {
+
+using Json = nlohmann::json;
+
+// Walks one JSON object, remembering its path for messages and which keys were
+// read, so that any key left over (a typo) is reported.
+class Node {
+public:
+    Node(const Json& json, std::string path, const std::string& file) : json_(json), path_(std::move(path)), file_(file) {}
+
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw Error(file_, (path_.empty() ? std::string("/") : path_) + ": " + problem);
+    }
+    const std::string& path() const { return path_; }
+
+    void requireObject() const {
+        if (!json_.is_object()) fail("must be an object");
+    }
+    bool has(const std::string& key) {
+        known_.insert(key);
+        return json_.contains(key);
+    }
+    Node child(const std::string& key) {
+        known_.insert(key);
+        if (!json_.contains(key)) fail("missing required key '" + key + "'");
+        return Node(json_.at(key), path_ + "/" + key, file_);
+    }
+    Node element(size_t i) const { return Node(json_.at(i), path_ + "/" + std::to_string(i), file_); }
+    size_t arraySize() const {
+        if (!json_.is_array()) fail("must be an array");
+        return json_.size();
+    }
+    void rejectUnknownKeys() const {
+        for (auto it = json_.begin(); it != json_.end(); ++it)
+            if (!known_.count(it.key())) Node(it.value(), path_ + "/" + it.key(), file_).fail("unknown key");
+    }
+
+    double number() const {
+        if (!json_.is_number()) fail("must be a number");
+        const double v = json_.get<double>();
+        if (!std::isfinite(v)) fail("must be finite");
+        return v;
+    }
+    double number(double lo, double hi) const {
+        const double v = number();
+        if (v < lo || v > hi) fail("must lie in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
+        return v;
+    }
+    double nonNegative() const {
+        const double v = number();
+        if (v < 0.0) fail("must be non-negative (got " + fmt(v) + ")");
+        return v;
+    }
+    int integer(int lo, int hi) const {
+        if (!json_.is_number_integer()) fail("must be an integer");
+        const auto v = json_.get<long long>();
+        if (v < lo || v > hi) fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return int(v);
+    }
+    bool boolean() const {
+        if (!json_.is_boolean()) fail("must be true or false");
+        return json_.get<bool>();
+    }
+    std::string string() const {
+        if (!json_.is_string()) fail("must be a string");
+        return json_.get<std::string>();
+    }
+    Vec3 vec3() const {
+        if (!json_.is_array() || json_.size() != 3) fail("must be an array of 3 numbers");
+        return Vec3(element(0).number(), element(1).number(), element(2).number());
+    }
+    // A number or an RGB triple, each channel within [lo, hi].
+    Rgb rgb(double lo, double hi) const {
+        if (json_.is_number()) {
+            const double v = number(lo, hi);
+            return Rgb(v);
+        }
+        if (!json_.is_array() || json_.size() != 3) fail("must be a number or an array of 3 numbers");
+        return Rgb(element(0).number(lo, hi), element(1).number(lo, hi), element(2).number(lo, hi));
+    }
+    const Json& json() const { return json_; }
+
+    static std::string fmt(double v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    }
+
+private:
+    const Json& json_;
+    std::string path_;
+    const std::string& file_;
+    std::set<std::string> known_;
+};
+
+constexpr double kHuge = 1e300;
+
+Camera parseCamera(Node n) {
+    n.requireObject();
+    Camera c;
+    c.position = n.child("position").vec3();
+    c.target = n.child("target").vec3();
+    if (n.has("up")) c.up = n.child("up").vec3();
+    c.fovYDegrees = n.child("fov_y").number(1e-3, 179.0);
+    c.width = n.child("width").integer(1, 16384);
+    c.height = n.child("height").integer(1, 16384);
+    n.rejectUnknownKeys();
+    if (glm::length(c.target - c.position) == 0.0) n.fail("position and target coincide");
+    if (glm::length(glm::cross(c.target - c.position, c.up)) == 0.0) n.fail("up is parallel to the view direction");
+    return c;
+}
+
+Light parseLight(Node n) {
+    n.requireObject();
+    Light l;
+    const std::string type = n.child("type").string();
+    if (type == "point") {
+        l.type = Light::Type::Point;
+        l.position = n.child("position").vec3();
+        l.power = n.child("intensity").rgb(0.0, kHuge);
+    } else if (type == "directional") {
+        l.type = Light::Type::Directional;
+        const Vec3 d = n.child("direction").vec3();
+        if (glm::length(d) == 0.0) n.child("direction").fail("must not be the zero vector");
+        l.direction = glm::normalize(d);
+        l.power = n.child("irradiance").rgb(0.0, kHuge);
+    } else {
+        n.child("type").fail("unknown light type '" + type + "' (expected point or directional)");
+    }
+    n.rejectUnknownKeys();
+    return l;
+}
+
+std::filesystem::path resolve(const std::filesystem::path& sceneFile, const std::string& relative) {
+    const std::filesystem::path p(relative);
+    return p.is_absolute() ? p : sceneFile.parent_path() / p;
+}
+
+DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
+    n.requireObject();
+    DensityDesc d;
+    const std::string type = n.child("type").string();
+    if (type == "constant") {
+        d.type = DensityDesc::Type::Constant;
+    } else if (type == "layers") {
+        d.type = DensityDesc::Type::Layers;
+        Node axis = n.child("axis");
+        const std::string a = axis.string();
+        if (a != "x" && a != "y" && a != "z") axis.fail("must be \"x\", \"y\" or \"z\"");
+        d.axis = a[0] - 'x';
+        Node values = n.child("values");
+        if (values.arraySize() == 0) values.fail("must hold at least one value");
+        for (size_t i = 0; i < values.arraySize(); ++i) d.values.push_back(values.element(i).nonNegative());
+    } else if (type == "grid") {
+        d.type = DensityDesc::Type::Grid;
+        Node file = n.child("file");
+        d.file = resolve(sceneFile, file.string());
+        if (d.file.extension() == ".vdb") {
+            d.gridName = n.has("grid") ? n.child("grid").string() : "density";
+        } else {
+            Node dims = n.child("dims");
+            if (dims.arraySize() != 3) dims.fail("must be an array of 3 integers");
+            for (int i = 0; i < 3; ++i) d.dims[i] = dims.element(i).integer(1, 4096);
+            Node bounds = n.child("bounds");
+            if (bounds.arraySize() != 2) bounds.fail("must be [[min x, y, z], [max x, y, z]]");
+            d.bounds.min = bounds.element(0).vec3();
+            d.bounds.max = bounds.element(1).vec3();
+            for (int i = 0; i < 3; ++i)
+                if (!(d.bounds.max[i] > d.bounds.min[i])) bounds.fail("max must exceed min on every axis");
+        }
+    } else {
+        n.child("type").fail("unknown density type '" + type + "' (expected constant, layers or grid)");
+    }
+    n.rejectUnknownKeys();
+    return d;
+}
+
+MediumDesc parseMedium(Node n, const std::filesystem::path& sceneFile) {
+    n.requireObject();
+    MediumDesc m;
+    m.sigmaT = n.child("sigma_t").rgb(0.0, kHuge);
+    m.albedo = n.child("albedo").rgb(0.0, 1.0);
+    if (n.has("g")) m.g = n.child("g").number(-0.999, 0.999);
+    if (n.has("ior")) m.ior = n.child("ior").number(1.0, 4.0);
+    if (n.has("density")) m.density = parseDensity(n.child("density"), sceneFile);
+    if (n.has("blockers")) {
+        Node blockers = n.child("blockers");
+        for (size_t i = 0; i < blockers.arraySize(); ++i)
+            m.blockers.push_back(resolve(sceneFile, blockers.element(i).string()));
+    }
+    n.rejectUnknownKeys();
+    return m;
+}
+
+SurfaceDesc parseSurface(Node n) {
+    n.requireObject();
+    SurfaceDesc s;
+    if (n.has("diffuse")) s.diffuse = n.child("diffuse").rgb(0.0, 1.0);
+    if (n.has("specular")) s.specular = n.child("specular").rgb(0.0, 1.0);
+    if (n.has("shininess")) s.shininess = n.child("shininess").number(0.0, 1e6);
+    n.rejectUnknownKeys();
+    return s;
+}
+
+ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile) {
+    n.requireObject();
+    ObjectDesc o;
+    const std::string mesh = n.child("mesh").string();
+    o.mesh = resolve(sceneFile, mesh);
+    o.name = n.has("name") ? n.child("name").string() : o.mesh.filename().string();
+    Node medium = n.child("medium");
+    o.medium = parseMedium(medium, sceneFile);
+    if (n.has("surface")) o.surface = parseSurface(n.child("surface"));
+    o.samples = resolve(sceneFile, n.child("samples").string());
+    n.rejectUnknownKeys();
+    Fingerprint fp;
+    fp.addFile(o.mesh);
+    for (const auto& b : o.medium.blockers) fp.addFile(b);
+    if (o.medium.density.type == DensityDesc::Type::Grid) fp.addFile(o.medium.density.file);
+    fp.addText(medium.json().dump());
+    o.fingerprint = fp.value();
+    return o;
+}
+
+RenderDesc parseRender(Node n) {
+    n.requireObject();
+    RenderDesc r;
+    if (n.has("method")) {
+        Node method = n.child("method");
+        r.method = method.string();
+        static const std::set<std::string> methods = {"ss", "reference", "path", "lbl", "mdom", "auto"};
+        if (!methods.count(r.method)) method.fail("unknown method '" + r.method + "'");
+    }
+    if (n.has("surface")) r.surface = n.child("surface").boolean();
+    n.rejectUnknownKeys();
+    return r;
+}
+
+}  // namespace
+
+SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file) {
+    const std::string name = file.string();
+    Json json;
+    try {
+        json = Json::parse(text);
+    } catch (const Json::parse_error& e) {
+        throw Error(name, std::string("malformed JSON: ") + e.what());
+    }
+    Node root(json, "", name);
+    root.requireObject();
+    SceneDesc scene;
+    scene.file = file;
+    scene.camera = parseCamera(root.child("camera"));
+    Node lights = root.child("lights");
+    for (size_t i = 0; i < lights.arraySize(); ++i) scene.lights.push_back(parseLight(lights.element(i)));
+    Node objects = root.child("objects");
+    if (objects.arraySize() == 0) objects.fail("must hold at least one object");
+    for (size_t i = 0; i < objects.arraySize(); ++i) scene.objects.push_back(parseObject(objects.element(i), file));
+    if (root.has("render")) scene.render = parseRender(root.child("render"));
+    root.rejectUnknownKeys();
+    return scene;
+}
+
+SceneDesc parseScene(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(file.string(), "cannot open scene file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return parseSceneText(text.str(), file);
+}
+
+}  // namespace lucent

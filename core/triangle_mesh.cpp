@@ -1,0 +1,133 @@
+#include "core/triangle_mesh.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace lucent {
+
+Bounds3 TriangleMesh::bounds() const {
+    Bounds3 b;
+    for (const Vec3& p : positions) b.extend(p);
+    return b;
+}
+
+Vec3 TriangleMesh::faceNormal(size_t face) const {
+    const auto& t = triangles[face];
+    return glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+}
+
+double TriangleMesh::signedVolume() const {
+    // Divergence theorem: sum of signed tetrahedra against the bounding-box centre
+    // (a nearby origin keeps the cancellation error small for meshes far from 0).
+    const Vec3 o = bounds().center();
+    double v = 0.0;
+    for (const auto& t : triangles)
+        v += glm::dot(positions[t[0]] - o, glm::cross(positions[t[1]] - o, positions[t[2]] - o));
+    return v / 6.0;
+}
+
+double TriangleMesh::area() const {
+    double a = 0.0;
+    for (size_t f = 0; f < triangles.size(); ++f) a += 0.5 * glm::length(faceNormal(f));
+    return a;
+}
+
+namespace {
+
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// OpenMesh reports faces it refuses (non-manifold "complex edge"/"complex vertex")
+// only on its error stream; capture that stream while reading.
+class CapturedOpenMeshErrors {
+public:
+    CapturedOpenMeshErrors() {
+        ::omerr().disconnect(std::cerr);
+        ::omerr().connect(text_);
+    }
+    ~CapturedOpenMeshErrors() {
+        ::omerr().flush();
+        ::omerr().disconnect(text_);
+        ::omerr().connect(std::cerr);
+    }
+    std::string text() {
+        ::omerr().flush();
+        return text_.str();
+    }
+
+private:
+    std::ostringstream text_;
+};
+
+}  // namespace
+
+TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+    const std::string file = path.string();
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe) throw Error(file, "cannot open mesh file");
+    }
+    OmMesh om;
+    std::string openMeshErrors;
+    {
+        CapturedOpenMeshErrors capture;
+        OpenMesh::IO::Options options;
+        if (!OpenMesh::IO::read_mesh(om, file, options))
+            throw Error(file, "cannot read mesh (unsupported format or malformed file)");
+        openMeshErrors = capture.text();
+    }
+    if (openMeshErrors.find("complex") != std::string::npos)
+        throw Error(file, "mesh is not manifold (an edge or vertex is shared by more than two face fans)");
+    if (om.n_faces() == 0 || om.n_vertices() == 0) throw Error(file, "mesh is empty");
+
+    TriangleMesh mesh;
+    mesh.positions.reserve(om.n_vertices());
+    for (auto v : om.vertices()) {
+        const auto p = om.point(v);
+        const Vec3 q(p[0], p[1], p[2]);
+        if (!isFinite(q)) throw Error(file, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
+        mesh.positions.push_back(q);
+    }
+    for (auto e : om.edges())
+        if (om.is_boundary(e))
+            throw Error(file, "mesh is not closed (edge between vertices " +
+                                  std::to_string(om.from_vertex_handle(om.halfedge_handle(e, 0)).idx()) + " and " +
+                                  std::to_string(om.to_vertex_handle(om.halfedge_handle(e, 0)).idx()) +
+                                  " borders a hole)");
+    for (auto v : om.vertices()) {
+        if (om.is_isolated(v)) continue;
+        if (!om.is_manifold(v)) throw Error(file, "mesh is not manifold at vertex " + std::to_string(v.idx()));
+    }
+
+    size_t degenerate = 0;
+    const double scale = std::max(mesh.bounds().diagonal(), 1e-300);
+    for (auto f : om.faces()) {
+        std::array<uint32_t, 3> tri;
+        int k = 0;
+        for (auto v : om.fv_range(f)) tri[k++] = uint32_t(v.idx());
+        const Vec3 n = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                                  mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+        // Relative to the model's size so that tiny and huge models behave alike.
+        if (glm::length(n) <= 1e-14 * scale * scale) { ++degenerate; continue; }
+        mesh.triangles.push_back(tri);
+    }
+    if (mesh.triangles.empty()) throw Error(file, "mesh is empty (every face has zero area)");
+    if (degenerate > 0)
+        warnings.push_back(file + ": removed " + std::to_string(degenerate) + " zero-area face(s)");
+
+    const double volume = mesh.signedVolume();
+    if (!(std::abs(volume) > 0.0)) throw Error(file, "mesh encloses no volume");
+    if (volume < 0.0) {
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+        warnings.push_back(file + ": faces pointed inwards; orientation flipped");
+    }
+    return mesh;
+}
+
+}  // namespace lucent

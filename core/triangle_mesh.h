@@ -1,0 +1,31 @@
+#pragma once
+// A closed, consistently outward-oriented triangle mesh: the boundary of a
+// translucent object or of an opaque blocker inside one.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace lucent {
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+
+    Bounds3 bounds() const;
+    double signedVolume() const;  // > 0 when faces point outwards
+    double area() const;
+    Vec3 faceNormal(size_t face) const;  // unnormalised, length = 2 * area
+};
+
+// Loads OBJ, PLY, OFF or STL through OpenMesh and checks that the mesh bounds a
+// volume: non-empty, finite coordinates, every edge shared by exactly two faces,
+// every vertex manifold. Inverted orientation is flipped; zero-area faces are
+// dropped (they cannot be crossed) with a note appended to warnings.
+// Throws Error("FILE: problem") otherwise.
+TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::string>& warnings);
+
+}  // namespace lucent

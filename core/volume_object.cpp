@@ -1,0 +1,66 @@
+#include "core/volume_object.h"
+
+#include "core/error.h"
+
+namespace lucent {
+namespace {
+
+std::unique_ptr<DensityField> makeDensity(const DensityDesc& d, const Bounds3& objectBounds) {
+    switch (d.type) {
+        case DensityDesc::Type::Constant: return std::make_unique<ConstantDensity>();
+        case DensityDesc::Type::Layers: return std::make_unique<LayeredDensity>(d.axis, d.values, objectBounds);
+        case DensityDesc::Type::Grid:
+            if (d.file.extension() == ".vdb") return loadVdbGrid(d.file, d.gridName);
+            return loadRawGrid(d.file, d.dims[0], d.dims[1], d.dims[2], d.bounds);
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
+    : desc_(desc), mesh_(loadClosedMesh(desc.mesh, warnings)), boundary_(mesh_) {
+    density_ = makeDensity(desc.medium.density, mesh_.bounds());
+    for (const auto& file : desc.medium.blockers) {
+        TriangleMesh blocker = loadClosedMesh(file, warnings);
+        for (const Vec3& p : blocker.positions)
+            if (!boundary_.contains(p))
+                throw Error(file.string(), "blocker is not inside its object '" + desc.name + "'");
+        blockers_.emplace_back(blocker);
+    }
+}
+
+bool VolumeObject::insideBlocker(const Vec3& p) const {
+    for (const auto& b : blockers_)
+        if (b.contains(p)) return true;
+    return false;
+}
+
+double VolumeObject::firstBlockerHit(const Vec3& origin, const Vec3& dir) const {
+    double t = kInfinity;
+    for (const auto& b : blockers_) t = std::min(t, b.firstHit(origin, dir));
+    return t;
+}
+
+double VolumeObject::densityPath(const Vec3& origin, const Vec3& dir, double tMax) const {
+    if (!blockers_.empty() && firstBlockerHit(origin, dir) < tMax) return kInfinity;
+    thread_local std::vector<Interval> inside;
+    boundary_.insideIntervals(origin, dir, tMax, inside);
+    double path = 0.0;
+    for (const Interval& s : inside) path += density_->integrate(origin + s.t0 * dir, origin + s.t1 * dir);
+    return path;
+}
+
+Rgb VolumeObject::extinction(const Vec3& p) const {
+    if (!blockers_.empty() && insideBlocker(p)) return Rgb(0.0);
+    return desc_.medium.sigmaT * density_->at(p);
+}
+
+std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings) {
+    std::vector<VolumeObject> objects;
+    objects.reserve(scene.objects.size());
+    for (const auto& desc : scene.objects) objects.emplace_back(desc, warnings);
+    return objects;
+}
+
+}  // namespace lucent

@@ -1,0 +1,58 @@
+#pragma once
+// A translucent object ready for light transport queries: its boundary mesh and
+// ray caster, its density field and its opaque blockers. Optical depth is
+// sigma_t times the density path integral computed here, so one ray serves all
+// three colour channels.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/density_field.h"
+#include "core/mesh_raycaster.h"
+#include "core/scene.h"
+#include "core/triangle_mesh.h"
+
+namespace lucent {
+
+class VolumeObject {
+public:
+    // Loads and validates the mesh, blockers and density of desc.
+    VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings);
+
+    const ObjectDesc& desc() const { return desc_; }
+    const TriangleMesh& mesh() const { return mesh_; }
+    const MeshRaycaster& boundary() const { return boundary_; }
+    const DensityField& density() const { return *density_; }
+
+    // Integral of density over the parts of origin + t dir (0 <= t <= tMax, dir unit)
+    // inside the object; infinity when a blocker lies in the way. With
+    // tMax = infinity this is the path to the boundary through every crossing.
+    double densityPath(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
+
+    bool contains(const Vec3& p) const { return boundary_.contains(p); }
+    bool insideBlocker(const Vec3& p) const;
+    // Distance to the first blocker surface along the ray, or infinity.
+    double firstBlockerHit(const Vec3& origin, const Vec3& dir) const;
+
+    // sigma_t * density and albedo * that at p (zero inside blockers).
+    Rgb extinction(const Vec3& p) const;
+    Rgb scattering(const Vec3& p) const { return desc_.medium.albedo * extinction(p); }
+
+private:
+    ObjectDesc desc_;
+    TriangleMesh mesh_;
+    MeshRaycaster boundary_;
+    std::unique_ptr<DensityField> density_;
+    std::vector<MeshRaycaster> blockers_;
+};
+
+// exp(-sigma_t * path) per channel, exactly 0 through a blocker (path = infinity)
+// even where sigma_t is 0 (0 * infinity must not become NaN).
+inline Rgb transmittance(const Rgb& sigmaT, double path) {
+    if (path == kInfinity) return Rgb(0.0);
+    return glm::exp(-sigmaT * path);
+}
+
+std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings);
+
+}  // namespace lucent

@@ -1,0 +1,146 @@
+#include "preprocess/poisson_disk.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "core/rng.h"
+
+namespace lucent {
+namespace {
+
+struct Fragment {
+    Vec3 p[3];
+    double r[3];
+    double area() const { return 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])); }
+    double longestEdge() const {
+        return std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])});
+    }
+};
+
+// Samples hashed into cubic cells as wide as the largest radius, so every disk
+// that can reach a point lies in the 27 cells around it.
+class SampleGrid {
+public:
+    explicit SampleGrid(double cell) : cell_(cell) {}
+    void insert(const DiskSample& s, uint32_t index) { cells_[key(cellOf(s.position))].push_back(index); }
+
+    template <class F>
+    bool anyNear(const Vec3& p, const F& predicate) const {
+        const glm::ivec3 c = cellOf(p);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    auto it = cells_.find(key(c + glm::ivec3(dx, dy, dz)));
+                    if (it == cells_.end()) continue;
+                    for (uint32_t i : it->second)
+                        if (predicate(i)) return true;
+                }
+        return false;
+    }
+
+private:
+    glm::ivec3 cellOf(const Vec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
+    static uint64_t key(const glm::ivec3& c) {
+        return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+               uint64_t(uint32_t(c.z) & 0x1fffff);
+    }
+    double cell_;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+struct Level {
+    std::vector<Fragment> fragments;
+    double totalArea = 0.0;
+    double maxArea = 0.0;
+    void add(const Fragment& f) {
+        const double a = f.area();
+        fragments.push_back(f);
+        totalArea += a;
+        maxArea = std::max(maxArea, a);
+    }
+};
+
+}  // namespace
+
+std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge) {
+    std::vector<DiskSample> samples;
+    if (surface.triangles.empty()) return samples;
+    const double maxRadius = *std::max_element(surface.radius.begin(), surface.radius.end());
+    SampleGrid grid(maxRadius);
+    Rng rng(seed, 0x9d5c);
+
+    auto conflicts = [&](const Vec3& x, double rx) {
+        return grid.anyNear(x, [&](uint32_t i) {
+            const double r = std::max(rx, samples[i].radius);
+            const Vec3 d = x - samples[i].position;
+            return glm::dot(d, d) < r * r;
+        });
+    };
+    // A disk is convex, so it covers a triangle when it holds all three corners.
+    auto covered = [&](const Fragment& f) {
+        return grid.anyNear(f.p[0], [&](uint32_t i) {
+            const double r2 = samples[i].radius * samples[i].radius;
+            for (const Vec3& c : f.p) {
+                const Vec3 d = c - samples[i].position;
+                if (glm::dot(d, d) >= r2) return false;
+            }
+            return true;
+        });
+    };
+
+    std::vector<Level> levels(1);
+    for (const auto& t : surface.triangles) {
+        Fragment f{{surface.positions[t[0]], surface.positions[t[1]], surface.positions[t[2]]},
+                   {surface.radius[t[0]], surface.radius[t[1]], surface.radius[t[2]]}};
+        if (f.area() > 0.0) levels[0].add(f);
+    }
+
+    while (true) {
+        double remaining = 0.0;
+        for (auto& level : levels) {
+            if (level.fragments.empty()) level.totalArea = level.maxArea = 0.0;  // clear rounding drift
+            remaining += level.totalArea;
+        }
+        if (remaining <= 0.0) break;
+        // Level by its share of the active area, then a fragment by rejection on its area.
+        double pick = rng.uniform() * remaining;
+        size_t li = 0;
+        while (li + 1 < levels.size() && (pick >= levels[li].totalArea || levels[li].fragments.empty())) {
+            pick -= levels[li].totalArea;
+            ++li;
+        }
+        Level& level = levels[li];
+        if (level.fragments.empty()) continue;
+        size_t fi;
+        do fi = size_t(rng.uniform() * double(level.fragments.size()));
+        while (rng.uniform() * level.maxArea > level.fragments[fi].area());
+        const Fragment f = level.fragments[fi];
+        level.fragments[fi] = level.fragments.back();
+        level.fragments.pop_back();
+        level.totalArea = std::max(0.0, level.totalArea - f.area());
+
+        // Throw a dart uniformly into the fragment.
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1.0) { u = 1.0 - u; v = 1.0 - v; }
+        const Vec3 x = f.p[0] + u * (f.p[1] - f.p[0]) + v * (f.p[2] - f.p[0]);
+        const double rx = f.r[0] + u * (f.r[1] - f.r[0]) + v * (f.r[2] - f.r[0]);
+        if (!conflicts(x, rx)) {
+            grid.insert({x, rx}, uint32_t(samples.size()));
+            samples.push_back({x, rx});
+        }
+        if (covered(f) || f.longestEdge() < finestEdge) continue;
+        // Split into four at the edge midpoints; uncovered children go one level down.
+        const Vec3 m01 = 0.5 * (f.p[0] + f.p[1]), m12 = 0.5 * (f.p[1] + f.p[2]), m20 = 0.5 * (f.p[2] + f.p[0]);
+        const double r01 = 0.5 * (f.r[0] + f.r[1]), r12 = 0.5 * (f.r[1] + f.r[2]), r20 = 0.5 * (f.r[2] + f.r[0]);
+        const Fragment children[4] = {{{f.p[0], m01, m20}, {f.r[0], r01, r20}},
+                                      {{m01, f.p[1], m12}, {r01, f.r[1], r12}},
+                                      {{m20, m12, f.p[2]}, {r20, r12, f.r[2]}},
+                                      {{m01, m12, m20}, {r01, r12, r20}}};
+        if (levels.size() == li + 1) levels.emplace_back();
+        for (const Fragment& c : children)
+            if (!covered(c)) levels[li + 1].add(c);
+    }
+    return samples;
+}
+
+}  // namespace lucent

@@ -1,0 +1,216 @@
+#include "preprocess/preprocessor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "preprocess/density_heuristic.h"
+#include "preprocess/offset_layers.h"
+#include "preprocess/poisson_disk.h"
+#include "preprocess/sh_projection.h"
+
+namespace lucent {
+namespace {
+
+class Stopwatch {
+public:
+    double lap() {
+        const auto now = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        return s;
+    }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// E_2(x) = integral_0^1 exp(-x / mu) dmu, by Gauss-Legendre on a substitution that
+// tames the endpoint behaviour (mu = s^2).
+double exponentialIntegralE2(double x) {
+    static const double nodes[8] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355, 0.4082826787521751,
+                                    0.5917173212478249, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681};
+    static const double weights[8] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+                                      0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+    double sum = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const double s = nodes[i], mu = s * s;
+        sum += weights[i] * 2.0 * s * std::exp(-x / mu);
+    }
+    return sum;
+}
+
+// Percentiles make the normalisation robust to a few extreme divergences.
+std::pair<double, double> densityRange(const std::vector<HeuristicPoint>& points) {
+    std::vector<double> values;
+    for (const auto& p : points)
+        if (!p.culled) values.push_back(p.density);
+    if (values.empty()) return {0.0, 1.0};
+    std::sort(values.begin(), values.end());
+    const double lo = values[size_t(0.02 * double(values.size() - 1))];
+    const double hi = values[size_t(0.98 * double(values.size() - 1))];
+    return {lo, hi > lo ? hi : lo + 1.0};
+}
+
+}  // namespace
+
+double negligibleLightDepth(double extinction, double epsilon) {
+    if (!(extinction > 0.0)) return kInfinity;
+    double lo = 0.0, hi = 1.0;
+    while (0.5 * exponentialIntegralE2(hi) > epsilon && hi < 1e3) hi *= 2.0;
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (0.5 * exponentialIntegralE2(mid) > epsilon ? lo : hi) = mid;
+    }
+    return hi / extinction;
+}
+
+PreprocessSettings qualityPreset(const std::string& name) {
+    PreprocessSettings s;
+    if (name == "draft") {
+        s.samples = 4000;
+        s.heuristicDirections = 32;
+        s.projectionDirections = 128;
+        s.shOrder = 4;
+    } else if (name == "default") {
+    } else if (name == "high") {
+        s.samples = 80000;
+        s.heuristicDirections = 128;
+        s.projectionDirections = 512;
+        s.shOrder = 6;
+    } else {
+        throw Error("unknown quality '" + name + "' (expected draft, default or high)");
+    }
+    return s;
+}
+
+SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings* timings) {
+    PreprocessTimings local;
+    PreprocessTimings& t = timings ? *timings : local;
+    Stopwatch clock;
+    const MediumDesc& medium = object.desc().medium;
+    const TriangleMesh& mesh = object.mesh();
+    const std::string& name = object.desc().name;
+
+    // The most penetrating channel decides how deep light reaches and what is culled.
+    const double minSigmaT = std::min({medium.sigmaT.r, medium.sigmaT.g, medium.sigmaT.b});
+    const double maxDepth = negligibleLightDepth(minSigmaT * object.density().minimum(), settings.cullEpsilon);
+
+    // Mean radius r from the sample count: a maximal Poisson-disk set with spacing r
+    // fills space at about 0.73 / r^3 (random sequential packing at 38% of spheres
+    // of diameter r), over the shell that light reaches.
+    const double volume = std::abs(mesh.signedVolume());
+    const double shell = std::min(volume, mesh.area() * maxDepth);
+    double r = std::cbrt(0.726 * shell / std::max(settings.samples, 1));
+
+    // Offset layers from half a spacing under the surface down to the light depth.
+    double spacing = settings.layerSpacing * r;
+    std::vector<double> depths;
+    for (int k = 0; k < settings.maxLayers; ++k) {
+        const double depth = (k + 0.5) * spacing;
+        if (depth > maxDepth) break;
+        depths.push_back(depth);
+    }
+    std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n", name.c_str(),
+                 depths.size(), spacing, std::min(maxDepth, 1e300));
+    const std::vector<OffsetLayer> layers = buildOffsetLayers(mesh, depths, spacing);
+    if (layers.empty()) throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " + std::to_string(0.5 * spacing));
+
+    RadiusSurface surface;
+    for (const auto& layer : layers) {
+        const uint32_t base = uint32_t(surface.positions.size());
+        surface.positions.insert(surface.positions.end(), layer.surface.positions.begin(), layer.surface.positions.end());
+        for (auto tri : layer.surface.triangles) surface.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
+    }
+    t.layerCount = layers.size();
+    t.layerVertices = surface.positions.size();
+    t.layers = clock.lap();
+
+    // Density heuristic at every layer vertex.
+    HeuristicSettings heuristic;
+    heuristic.directions = settings.heuristicDirections;
+    heuristic.step = 0.25 * spacing;
+    heuristic.extinction = minSigmaT;
+    heuristic.cullEpsilon = settings.cullEpsilon;
+    heuristic.seed = settings.seed;
+    const FirstMomentStencils moments = sampleFirstMoments(object, surface.positions, heuristic);
+    t.heuristicRays = moments.raysCast;
+    t.firstMoments = clock.lap();
+    const std::vector<HeuristicPoint> density = divergenceDensity(moments, heuristic);
+    const auto [rhoLo, rhoHi] = densityRange(density);
+    t.divergence = clock.lap();
+
+    // Radius between 2r (lowest density) and r/2 (highest), thesis 3.2.4.
+    std::vector<double> relativeRadius(density.size());
+    for (size_t i = 0; i < density.size(); ++i) {
+        const double rho = density[i].culled ? 0.0 : std::clamp((density[i].density - rhoLo) / (rhoHi - rhoLo), 0.0, 1.0);
+        relativeRadius[i] = std::exp2(1.0 - 2.0 * rho);
+    }
+    RadiusSurface live;
+    live.positions = std::move(surface.positions);
+    for (const auto& tri : surface.triangles)
+        if (!density[tri[0]].culled || !density[tri[1]].culled || !density[tri[2]].culled) live.triangles.push_back(tri);
+    if (live.triangles.empty())
+        throw Error(object.desc().mesh.string(), "no point inside receives light above the cull threshold");
+
+    // Fit r to the requested count: the count scales as r^-k with k between 2
+    // (layers sparser than r) and 3; measure k from two runs, then correct.
+    std::vector<DiskSample> disks;
+    auto sampleWith = [&](double radius) {
+        live.radius.resize(relativeRadius.size());
+        for (size_t i = 0; i < relativeRadius.size(); ++i) live.radius[i] = radius * relativeRadius[i];
+        disks = poissonDiskSample(live, settings.seed, 0.05 * radius);
+        return double(std::max<size_t>(disks.size(), 1));
+    };
+    const double target = std::max(settings.samples, 1);
+    double n0 = sampleWith(r);
+    for (int iteration = 0; iteration < 3 && std::abs(n0 / target - 1.0) > 0.05; ++iteration) {
+        const double r1 = r * std::cbrt(n0 / target);
+        const double n1 = sampleWith(r1);
+        const double k = std::clamp(std::log(n1 / n0) / std::log(r / r1), 1.5, 3.5);
+        r = r1 * std::pow(n1 / target, 1.0 / k);
+        n0 = sampleWith(r);
+    }
+    t.poissonDisk = clock.lap();
+
+    SampleSet set;
+    set.shOrder = uint32_t(settings.shOrder);
+    set.channels = (medium.sigmaT.r == medium.sigmaT.g && medium.sigmaT.g == medium.sigmaT.b) ? 1 : 3;
+    set.sceneFingerprint = object.desc().fingerprint;
+    set.bounds = mesh.bounds();
+    SampleParameters& p = set.parameters;
+    p.seed = settings.seed;
+    p.heuristicDirections = uint32_t(settings.heuristicDirections);
+    p.projectionDirections = uint32_t(settings.projectionDirections);
+    p.layerCount = uint32_t(layers.size());
+    p.layerSpacing = float(spacing);
+    p.meanRadius = float(r);
+    p.widthFactor = float(settings.widthFactor);
+    p.cullEpsilon = float(settings.cullEpsilon);
+
+    std::vector<Vec3> positions;
+    for (const auto& d : disks) {
+        if (object.insideBlocker(d.position)) continue;
+        positions.push_back(d.position);
+        set.positions.emplace_back(d.position);
+        set.radii.push_back(float(d.radius));
+        // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
+        set.widths.push_back(float(settings.widthFactor * d.radius / (2.0 * std::sqrt(2.0 * std::log(2.0)))));
+        set.scattering.emplace_back(glm::vec3(object.scattering(d.position)));
+    }
+
+    ProjectionSettings projection;
+    projection.order = settings.shOrder;
+    projection.directions = settings.projectionDirections;
+    projection.seed = settings.seed;
+    ProjectionResult projected = projectAttenuation(object, positions, projection, int(set.channels));
+    set.sh = std::move(projected.coefficients);
+    set.truncationError = std::move(projected.truncationError);
+    t.projectionRays = projected.raysCast;
+    t.projection = clock.lap();
+    return set;
+}
+
+}  // namespace lucent

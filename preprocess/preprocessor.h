@@ -1,0 +1,42 @@
+#pragma once
+// The preprocessing pipeline of thesis Algorithms 1 and 2, for one object:
+// offset layers -> density heuristic -> Poisson-disk samples -> SH projection
+// and Gaussian widths -> SampleSet.
+#include <cstdint>
+#include <string>
+
+#include "core/sample_set.h"
+#include "core/volume_object.h"
+
+namespace lucent {
+
+struct PreprocessSettings {
+    int samples = 20000;            // target count; the mean radius r is fitted to it
+    int heuristicDirections = 64;   // d, thesis 3.2.3
+    int projectionDirections = 256; // thesis 3.3.1: 128 enough, 256 saturates
+    int shOrder = 5;                // bands: 25 coefficients
+    uint64_t seed = 1;
+    double widthFactor = 1.0;       // Gaussian FWHM / Poisson radius (thesis 3.3.2 uses 1)
+    double layerSpacing = 0.5;      // layer offset as a fraction of r (thesis 3.2.2: "fractions of" r)
+    double cullEpsilon = 1e-3;      // receivable-light threshold, thesis 3.2.3
+    int maxLayers = 128;
+};
+
+// draft, default or high; throws Error for anything else.
+PreprocessSettings qualityPreset(const std::string& name);
+
+struct PreprocessTimings {
+    double layers = 0, firstMoments = 0, divergence = 0, poissonDisk = 0, projection = 0;
+    uint64_t heuristicRays = 0, projectionRays = 0;
+    size_t layerCount = 0, layerVertices = 0;
+    double total() const { return layers + firstMoments + divergence + poissonDisk + projection; }
+};
+
+SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings,
+                           PreprocessTimings* timings = nullptr);
+
+// Depth under a flat boundary where the light a point can receive,
+// E_2(sigma d) / 2 of the full sphere, falls to epsilon.
+double negligibleLightDepth(double extinction, double epsilon);
+
+}  // namespace lucent

@@ -1,0 +1,184 @@
+#include "reference/reference_renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+
+#include "core/camera_rays.h"
+#include "core/progress.h"
+
+namespace lucent {
+namespace {
+
+double magnitude(const Rgb& c) { return std::max({std::abs(c.r), std::abs(c.g), std::abs(c.b)}); }
+
+// Adaptive Simpson on [a, b] given f at a, midpoint and b, to absolute tolerance tol.
+template <class F>
+Rgb adaptiveSimpson(const F& f, double a, double b, const Rgb& fa, const Rgb& fm, const Rgb& fb, const Rgb& whole,
+                    double tol, int depth) {
+    const double m = 0.5 * (a + b);
+    const Rgb flm = f(0.5 * (a + m)), frm = f(0.5 * (m + b));
+    const Rgb left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+    const Rgb right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+    const Rgb delta = left + right - whole;
+    if (depth <= 0 || magnitude(delta) <= 15.0 * tol) return left + right + delta / 15.0;  // Richardson step
+    return adaptiveSimpson(f, a, m, fa, flm, fm, left, 0.5 * tol, depth - 1) +
+           adaptiveSimpson(f, m, b, fm, frm, fb, right, 0.5 * tol, depth - 1);
+}
+
+// Integrates f over [a, b]: a fixed composite pass sizes the answer, then each
+// panel is refined until its share of the tolerance is met.
+template <class F>
+Rgb integrate(const F& f, double a, double b, double relativeTolerance) {
+    constexpr int kPanels = 8;
+    const double h = (b - a) / kPanels;
+    Rgb values[2 * kPanels + 1];
+    for (int i = 0; i <= 2 * kPanels; ++i) values[i] = f(a + 0.5 * h * i);
+    Rgb coarse(0.0);
+    for (int p = 0; p < kPanels; ++p)
+        coarse += h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
+    const double tol = std::max(relativeTolerance * magnitude(coarse) / kPanels, 1e-300);
+    Rgb total(0.0);
+    for (int p = 0; p < kPanels; ++p) {
+        const double x0 = a + h * p;
+        const Rgb whole = h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
+        total += adaptiveSimpson(f, x0, x0 + h, values[2 * p], values[2 * p + 1], values[2 * p + 2], whole, tol, 24);
+    }
+    return total;
+}
+
+}  // namespace
+
+ReferenceRenderer::ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects)
+    : scene_(scene), objects_(objects) {}
+
+double ReferenceRenderer::densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const {
+    double path = 0.0;
+    for (const auto& o : objects_) path += o.densityPath(origin, dir, tMax);
+    return path;
+}
+
+// sigma_s(x) sum_j p E_j(x) T(x, l_j): light scattered at x towards the viewer,
+// before attenuation on the way to the viewer. viewDir points from the camera to x.
+Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
+    const Rgb sigmaS = object.scattering(x);
+    if (magnitude(sigmaS) == 0.0) return Rgb(0.0);
+    Rgb sum(0.0);
+    for (const Light& light : scene_.lights) {
+        Vec3 toLight;
+        double distance;
+        Rgb irradiance;
+        if (light.type == Light::Type::Point) {
+            toLight = light.position - x;
+            distance = glm::length(toLight);
+            if (distance == 0.0) continue;  // a light exactly at x: no direction to come from
+            toLight /= distance;
+            irradiance = light.power / (distance * distance);
+        } else {
+            toLight = -light.direction;
+            distance = kInfinity;
+            irradiance = light.power;
+        }
+        if (magnitude(irradiance) == 0.0) continue;
+        // Each object attenuates with its own sigma_t; a scene of one object is the common case.
+        Rgb transmitted(1.0);
+        for (const auto& o : objects_)
+            transmitted *= transmittance(o.desc().medium.sigmaT, o.densityPath(x, toLight, distance));
+        // Phase function between the light's propagation direction (-toLight) and the
+        // view's propagation direction (-viewDir).
+        const double phase = henyeyGreenstein(glm::dot(toLight, viewDir), object.desc().medium.g);
+        sum += phase * irradiance * transmitted;
+    }
+    return sigmaS * sum;
+}
+
+Rgb ReferenceRenderer::surfaceReflection(const VolumeObject& object, const Vec3& x, const Vec3& n,
+                                         const Vec3& viewDir) const {
+    const SurfaceDesc& s = *object.desc().surface;
+    Rgb sum(0.0);
+    const Vec3 toEye = -viewDir;
+    for (const Light& light : scene_.lights) {
+        Vec3 toLight = light.type == Light::Type::Point ? light.position - x : -light.direction;
+        const double d2 = light.type == Light::Type::Point ? glm::dot(toLight, toLight) : 1.0;
+        if (d2 == 0.0) continue;
+        toLight = glm::normalize(toLight);
+        const double cosI = glm::dot(n, toLight);
+        if (cosI <= 0.0) continue;
+        const Vec3 reflected = 2.0 * cosI * n - toLight;
+        const double cosR = std::max(0.0, glm::dot(reflected, toEye));
+        // Energy-normalised Phong BRDF times irradiance.
+        const Rgb brdf = s.diffuse / kPi + s.specular * (s.shininess + 2.0) / (2.0 * kPi) * std::pow(cosR, s.shininess);
+        sum += brdf * light.power / d2 * cosI;
+    }
+    return sum;
+}
+
+Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const {
+    // The camera ray stops at the first opaque blocker.
+    double tStop = kInfinity;
+    for (const auto& o : objects_) tStop = std::min(tStop, o.firstBlockerHit(origin, dir));
+
+    struct Segment {
+        const VolumeObject* object;
+        Interval span;
+    };
+    std::vector<Segment> segments;
+    std::vector<Interval> inside;
+    Rgb surface(0.0);
+    double nearestSurface = kInfinity;
+    std::vector<Crossing> cs;
+    for (const auto& o : objects_) {
+        o.boundary().insideIntervals(origin, dir, tStop, inside);
+        for (const Interval& s : inside) segments.push_back({&o, s});
+        if (settings.surface && scene_.render.surface && o.desc().surface) {
+            o.boundary().crossings(origin, dir, cs);
+            if (!cs.empty() && !cs.front().exits && cs.front().t < std::min(nearestSurface, tStop)) {
+                nearestSurface = cs.front().t;
+                surface = surfaceReflection(o, origin + cs.front().t * dir, o.boundary().unitNormal(cs.front().face), dir);
+            }
+        }
+    }
+    std::sort(segments.begin(), segments.end(),
+              [](const Segment& a, const Segment& b) { return a.span.t0 < b.span.t0; });
+
+    // Optical depth from the camera accumulates segment by segment, per channel.
+    Rgb tauBefore(0.0);
+    Rgb total(0.0);
+    for (const Segment& seg : segments) {
+        const VolumeObject& o = *seg.object;
+        const Vec3 entry = origin + seg.span.t0 * dir;
+        const Rgb sigmaT = o.desc().medium.sigmaT;
+        auto integrand = [&](double t) -> Rgb {
+            const Vec3 x = origin + t * dir;
+            const Rgb tau = tauBefore + sigmaT * o.density().integrate(entry, x);
+            return glm::exp(-tau) * inScattered(o, x, dir);
+        };
+        if (seg.span.t1 > seg.span.t0) total += integrate(integrand, seg.span.t0, seg.span.t1, settings.tolerance);
+        tauBefore += sigmaT * o.density().integrate(entry, origin + seg.span.t1 * dir);
+    }
+    return total + surface;
+}
+
+Image ReferenceRenderer::render(const ReferenceSettings& settings) const {
+    const Camera& cam = scene_.camera;
+    const CameraRays rays(cam);
+    Image image(cam.width, cam.height);
+    Progress progress("reference render", size_t(cam.height));
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y) {
+                for (int x = 0; x < cam.width; ++x) {
+                    const Rgb L = radiance(rays.origin(), rays.direction(x + 0.5, y + 0.5), settings);
+                    image.at(x, y) = glm::vec3(L);
+                }
+                progress.advance();
+            }
+        });
+    });
+    return image;
+}
+
+}  // namespace lucent

@@ -1,0 +1,37 @@
+#pragma once
+// The ground truth for single scattering (DESIGN.md "Units and conventions"):
+// for every pixel, the integral along the camera ray through each object of
+//   T(cam, x) sigma_s(x) p(w_view, w_light) sum_j E_j(x) T(x, l_j)
+// computed on the exact mesh and density, with no samples and no spherical
+// harmonics, by adaptive Simpson quadrature to a relative tolerance.
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+
+namespace lucent {
+
+struct ReferenceSettings {
+    double tolerance = 1e-3;  // relative error target of each pixel's integral
+    bool surface = true;      // add the Phong surface reflection of objects that have a surface
+    int threads = 0;          // 0: all cores
+};
+
+class ReferenceRenderer {
+public:
+    ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects);
+    Image render(const ReferenceSettings& settings) const;
+    // Radiance along one ray (exposed for tests).
+    Rgb radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
+
+private:
+    Rgb inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
+    Rgb surfaceReflection(const VolumeObject& object, const Vec3& x, const Vec3& normal, const Vec3& viewDir) const;
+    double densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const;
+
+    const SceneDesc& scene_;
+    const std::vector<VolumeObject>& objects_;
+};
+
+}  // namespace lucent

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Lucent builds, runs and tests with.
+# Root runs apt-get directly; anyone else goes through sudo.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  # geometry and volumes
+  libcgal-dev libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
+  # math, parsing, command line
+  libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  # image output
+  libpng-dev libopenexr-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+"${sudo[@]}" apt-get update -q
+DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
