@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/commands.h"
+#include "core/atomic_file.h"
 #include "core/sample_set.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
@@ -42,6 +43,7 @@ Command addPreprocessCommand(CLI::App& app) {
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
 
         const SceneDesc scene = parseScene(o->scene);
+        for (const auto& object : scene.objects) checkWritable(object.samples);
         std::vector<std::string> warnings;
         const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
         printWarnings(warnings);

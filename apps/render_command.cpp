@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/scene.h"
@@ -35,6 +36,7 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")->check(CLI::Range(0.0, 1e30));
     return [o] {
         SceneDesc scene = parseScene(o->scene);
+        checkWritable(o->output);
         if (o->width) scene.camera.width = o->width;
         if (o->height) scene.camera.height = o->height;
         std::string method = o->method.empty() ? scene.render.method : o->method;

@@ -38,4 +38,6 @@ void AtomicFile::commit() {
     committed_ = true;
 }
 
+void checkWritable(const std::filesystem::path& target) { AtomicFile probe(target); }
+
 }  // namespace lucent

@@ -27,4 +27,8 @@ private:
     bool committed_ = false;
 };
 
+// Fails now, with the error writing would give later, if target cannot be written:
+// commands call it before long work so a typo in a path costs nothing.
+void checkWritable(const std::filesystem::path& target);
+
 }  // namespace lucent

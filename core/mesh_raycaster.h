@@ -1,5 +1,5 @@
 #pragma once
-// Ray queries against a closed mesh through CGAL's AABB tree: every boundary
+// Ray queries against a closed mesh (Embree for rays, CGAL's AABB tree for distances): every boundary
 // crossing along a ray (concave meshes are crossed several times), the parts of a
 // ray that lie inside, point containment and distance to the surface.
 #include <memory>
@@ -46,6 +46,7 @@ private:
     struct Tree;
     std::unique_ptr<Tree> tree_;
     Bounds3 bounds_;
+    Vec3 origin_;
 };
 
 }  // namespace lucent

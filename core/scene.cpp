@@ -255,7 +255,7 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     Json json;
     try {
         json = Json::parse(text);
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {
         throw Error(name, std::string("malformed JSON: ") + e.what());
     }
     Node root(json, "", name);

@@ -4,6 +4,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -65,6 +67,26 @@ private:
     std::ostringstream text_;
 };
 
+// OpenMesh's STL reader drops vertices that are not finite, and the faces using
+// them, without a word; look at binary STL coordinates ourselves first.
+void rejectNonFiniteBinaryStl(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    const auto size = static_cast<uint64_t>(in.tellg());
+    if (size < 84) return;
+    in.seekg(80);
+    uint32_t count = 0;
+    in.read(reinterpret_cast<char*>(&count), 4);
+    if (size != 84 + 50ull * count) return;  // ASCII STL: OpenMesh reports what it cannot parse
+    char record[50];
+    for (uint32_t f = 0; f < count && in.read(record, 50); ++f)
+        for (int k = 3; k < 12; ++k) {
+            float v;
+            std::memcpy(&v, record + 4 * k, 4);
+            if (!std::isfinite(v))
+                throw Error(path.string(), "triangle " + std::to_string(f) + " has a non-finite coordinate");
+        }
+}
+
 }  // namespace
 
 TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::string>& warnings) {
@@ -73,6 +95,9 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
         std::ifstream probe(path, std::ios::binary);
         if (!probe) throw Error(file, "cannot open mesh file");
     }
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (extension == ".stl") rejectNonFiniteBinaryStl(path);
     OmMesh om;
     std::string openMeshErrors;
     {
@@ -82,6 +107,10 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
             throw Error(file, "cannot read mesh (unsupported format or malformed file)");
         openMeshErrors = capture.text();
     }
+    // OpenMesh skips a vertex line it cannot parse ("nan", "inf", garbage) and then
+    // every face that uses it, reporting only the faces.
+    if (openMeshErrors.find("invalid vertex index") != std::string::npos)
+        throw Error(file, "a vertex has non-finite or malformed coordinates (a face refers to a vertex that could not be read)");
     if (openMeshErrors.find("complex") != std::string::npos)
         throw Error(file, "mesh is not manifold (an edge or vertex is shared by more than two face fans)");
     if (om.n_faces() == 0 || om.n_vertices() == 0) throw Error(file, "mesh is empty");

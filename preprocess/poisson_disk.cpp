@@ -1,7 +1,6 @@
 #include "preprocess/poisson_disk.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "core/rng.h"
 
@@ -17,35 +16,50 @@ struct Fragment {
     }
 };
 
-// Samples hashed into cubic cells as wide as the largest radius, so every disk
-// that can reach a point lies in the 27 cells around it.
+// Samples binned into cubic cells at least as wide as the largest radius, so
+// every disk that can reach a point lies in the 27 cells around it. A dense grid
+// of linked lists: no hashing, no per-cell allocation.
 class SampleGrid {
 public:
-    explicit SampleGrid(double cell) : cell_(cell) {}
-    void insert(const DiskSample& s, uint32_t index) { cells_[key(cellOf(s.position))].push_back(index); }
-
+    SampleGrid(const Bounds3& bounds, double maxRadius) : origin_(bounds.min) {
+        const Vec3 extent = bounds.extent();
+        cell_ = maxRadius;
+        // Keep the grid under 2^24 cells; wider cells stay correct, only slower.
+        while (cellCount(extent) > (size_t(1) << 24)) cell_ *= 1.5;
+        dims_ = glm::ivec3(glm::floor(extent / cell_)) + 1;
+        head_.assign(size_t(dims_.x) * dims_.y * dims_.z, -1);
+    }
+    void insert(const Vec3& p, int32_t index) {
+        const size_t c = flat(cellOf(p));
+        if (next_.size() <= size_t(index)) next_.resize(size_t(index) + 1);
+        next_[index] = head_[c];
+        head_[c] = index;
+    }
     template <class F>
     bool anyNear(const Vec3& p, const F& predicate) const {
         const glm::ivec3 c = cellOf(p);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    auto it = cells_.find(key(c + glm::ivec3(dx, dy, dz)));
-                    if (it == cells_.end()) continue;
-                    for (uint32_t i : it->second)
-                        if (predicate(i)) return true;
-                }
+        const glm::ivec3 lo = glm::max(c - 1, glm::ivec3(0)), hi = glm::min(c + 1, dims_ - 1);
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x)
+                    for (int32_t i = head_[flat({x, y, z})]; i >= 0; i = next_[i])
+                        if (predicate(uint32_t(i))) return true;
         return false;
     }
 
 private:
-    glm::ivec3 cellOf(const Vec3& p) const { return glm::ivec3(glm::floor(p / cell_)); }
-    static uint64_t key(const glm::ivec3& c) {
-        return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
-               uint64_t(uint32_t(c.z) & 0x1fffff);
+    size_t cellCount(const Vec3& extent) const {
+        const Vec3 n = glm::floor(extent / cell_) + 1.0;
+        return size_t(n.x * n.y * n.z);
     }
+    glm::ivec3 cellOf(const Vec3& p) const {
+        return glm::clamp(glm::ivec3(glm::floor((p - origin_) / cell_)), glm::ivec3(0), dims_ - 1);
+    }
+    size_t flat(const glm::ivec3& c) const { return (size_t(c.z) * dims_.y + c.y) * dims_.x + c.x; }
+    Vec3 origin_;
     double cell_;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+    glm::ivec3 dims_;
+    std::vector<int32_t> head_, next_;
 };
 
 struct Level {
@@ -66,7 +80,9 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
     std::vector<DiskSample> samples;
     if (surface.triangles.empty()) return samples;
     const double maxRadius = *std::max_element(surface.radius.begin(), surface.radius.end());
-    SampleGrid grid(maxRadius);
+    Bounds3 bounds;
+    for (const Vec3& p : surface.positions) bounds.extend(p);
+    SampleGrid grid(bounds, maxRadius);
     Rng rng(seed, 0x9d5c);
 
     auto conflicts = [&](const Vec3& x, double rx) {
@@ -119,13 +135,14 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         level.fragments.pop_back();
         level.totalArea = std::max(0.0, level.totalArea - f.area());
 
+        if (covered(f)) continue;  // a disk placed since this fragment was queued
         // Throw a dart uniformly into the fragment.
         double u = rng.uniform(), v = rng.uniform();
         if (u + v > 1.0) { u = 1.0 - u; v = 1.0 - v; }
         const Vec3 x = f.p[0] + u * (f.p[1] - f.p[0]) + v * (f.p[2] - f.p[0]);
         const double rx = f.r[0] + u * (f.r[1] - f.r[0]) + v * (f.r[2] - f.r[0]);
         if (!conflicts(x, rx)) {
-            grid.insert({x, rx}, uint32_t(samples.size()));
+            grid.insert(x, int32_t(samples.size()));
             samples.push_back({x, rx});
         }
         if (covered(f) || f.longestEdge() < finestEdge) continue;

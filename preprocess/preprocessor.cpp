@@ -115,7 +115,10 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     }
     std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n", name.c_str(),
                  depths.size(), spacing, std::min(maxDepth, 1e300));
-    const std::vector<OffsetLayer> layers = buildOffsetLayers(mesh, depths, spacing);
+    // Marching cubes at voxel size r: fine enough to follow the surface at the scale
+    // samples resolve, and four times fewer vertices to run the heuristic on than at
+    // the layer spacing.
+    const std::vector<OffsetLayer> layers = buildOffsetLayers(mesh, depths, r);
     if (layers.empty()) throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " + std::to_string(0.5 * spacing));
 
     RadiusSurface surface;
@@ -161,7 +164,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     auto sampleWith = [&](double radius) {
         live.radius.resize(relativeRadius.size());
         for (size_t i = 0; i < relativeRadius.size(); ++i) live.radius[i] = radius * relativeRadius[i];
-        disks = poissonDiskSample(live, settings.seed, 0.05 * radius);
+        disks = poissonDiskSample(live, settings.seed, 0.2 * radius);
         return double(std::max<size_t>(disks.size(), 1));
     };
     const double target = std::max(settings.samples, 1);

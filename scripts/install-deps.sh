@@ -5,10 +5,10 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  # geometry and volumes
+  # geometry, ray casting and volumes
   libcgal-dev libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   # math, parsing, command line
-  libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  libembree-dev libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
   # image output
   libpng-dev libopenexr-dev
   # tests and benchmarks

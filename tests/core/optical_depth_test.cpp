@@ -1,0 +1,110 @@
+// Optical depth along rays: every crossing of a concave or multi-part boundary,
+// and blockers that stop light. Expected values are closed-form chord lengths.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "core/volume_object.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+std::string boxObj(Vec3 lo, Vec3 hi, int firstIndex = 1) {
+    std::string s;
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 p((i & 4) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 1) ? hi.z : lo.z);
+        s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    }
+    const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    for (const auto& q : quads) {
+        auto v = [&](int k) { return std::to_string(q[k] + firstIndex); };
+        s += "f " + v(0) + " " + v(1) + " " + v(2) + "\nf " + v(0) + " " + v(2) + " " + v(3) + "\n";
+    }
+    return s;
+}
+
+TEST(OpticalDepth, CrossesEveryPartOfTheBoundary) {
+    test::ScratchDir dir;
+    // Two separate boxes: a ray from inside the first leaves it, crosses the gap and the second.
+    const auto mesh = dir.write("two.obj", boxObj(Vec3(-2, -0.5, -0.5), Vec3(-1, 0.5, 0.5)) +
+                                               boxObj(Vec3(1, -0.5, -0.5), Vec3(2, 0.5, 0.5), 9));
+    std::vector<std::string> warnings;
+    const VolumeObject object(test::simpleObject(mesh, 1.0), warnings);
+    const Vec3 start(-1.5, 0.1, 0.2);
+    const Vec3 dir3 = glm::normalize(Vec3(1, 0.05, -0.03));
+    // Inside for x in [-1.5, -1] and [1, 2]: 1.5 units of x, scaled by 1 / dir.x.
+    EXPECT_NEAR(object.densityPath(start, dir3), 1.5 / dir3.x, 1e-9);
+    EXPECT_NEAR(object.densityPath(start, dir3, 3.0 / dir3.x), 0.5 / dir3.x + 0.5 / dir3.x, 1e-9);
+    EXPECT_NEAR(object.densityPath(start, -dir3), 0.5 / dir3.x, 1e-9);
+}
+
+TEST(OpticalDepth, ConcaveTorusThroughVertices) {
+    // The bundled torus (radii 0.5 and 0.18, vertices exactly on the x axis): a ray
+    // along +x from the tube centre at x = -0.5 is inside on [-0.5, -0.32] and [0.32, 0.68].
+    std::vector<std::string> warnings;
+    const VolumeObject torus(test::simpleObject(test::modelsDir() / "torus.obj", 1.0), warnings);
+    EXPECT_NEAR(torus.densityPath(Vec3(-0.5, 0, 0), Vec3(1, 0, 0)), 0.18 + 0.36, 1e-6);  // OpenMesh reads coordinates as float
+    EXPECT_NEAR(torus.densityPath(Vec3(-0.9, 0, 0), Vec3(1, 0, 0)), 0.36 + 0.36, 1e-6);
+    EXPECT_DOUBLE_EQ(torus.densityPath(Vec3(0, 0, 0), Vec3(0, 1, 0)), 0.0);
+}
+
+TEST(OpticalDepth, SphereChordsMatchTheCircle) {
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 1.0), warnings);
+    Rng rng(9, 9);
+    for (int i = 0; i < 100; ++i) {
+        const Vec3 x = 0.8 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const Vec3 w = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const double b = glm::dot(x, w), c = glm::dot(x, x) - 1.0;
+        const double exact = -b + std::sqrt(b * b - c);
+        // The icosphere sits inside the unit sphere by at most its sagitta (~2e-4).
+        EXPECT_NEAR(sphere.densityPath(x, w), exact, 1e-3);
+    }
+}
+
+TEST(OpticalDepth, BlockerStopsLight) {
+    test::ScratchDir dir;
+    const auto outer = dir.write("outer.obj", boxObj(Vec3(-1), Vec3(1)));
+    const auto inner = dir.write("inner.obj", boxObj(Vec3(-0.2), Vec3(0.2)));
+    ObjectDesc desc = test::simpleObject(outer, 2.0);
+    desc.medium.blockers = {inner};
+    std::vector<std::string> warnings;
+    const VolumeObject object(desc, warnings);
+    EXPECT_EQ(object.densityPath(Vec3(-0.8, 0, 0), Vec3(1, 0, 0)), kInfinity);
+    EXPECT_NEAR(object.densityPath(Vec3(-0.8, 0.5, 0), Vec3(1, 0, 0)), 1.8, 1e-9);
+    EXPECT_TRUE(object.insideBlocker(Vec3(0.1, 0, 0)));
+    EXPECT_EQ(object.extinction(Vec3(0.1, 0, 0)), Rgb(0.0));
+    EXPECT_EQ(object.extinction(Vec3(0.5, 0, 0)), Rgb(2.0));
+    // Transmittance through a blocker is exactly 0, even for sigma_t = 0.
+    EXPECT_EQ(transmittance(Rgb(0.0), kInfinity), Rgb(0.0));
+}
+
+TEST(OpticalDepth, BlockerOutsideItsObjectIsAnError) {
+    test::ScratchDir dir;
+    const auto outer = dir.write("outer.obj", boxObj(Vec3(-1), Vec3(1)));
+    const auto stray = dir.write("stray.obj", boxObj(Vec3(0.5), Vec3(1.5)));
+    ObjectDesc desc = test::simpleObject(outer, 2.0);
+    desc.medium.blockers = {stray};
+    std::vector<std::string> warnings;
+    try {
+        VolumeObject object(desc, warnings);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("stray.obj: blocker is not inside its object"), std::string::npos);
+    }
+}
+
+TEST(OpticalDepth, LayeredMediumAlongTheAxis) {
+    ObjectDesc desc = test::simpleObject(test::modelsDir() / "cube.obj", 1.0);
+    desc.medium.density.type = DensityDesc::Type::Layers;
+    desc.medium.density.axis = 2;
+    desc.medium.density.values = {1.0, 3.0};
+    std::vector<std::string> warnings;
+    const VolumeObject cube(desc, warnings);
+    // From z = -0.5 up: 0.5 in density 1, then 1 in density 3.
+    EXPECT_NEAR(cube.densityPath(Vec3(0.1, 0.2, -0.5), Vec3(0, 0, 1)), 0.5 + 3.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace lucent

@@ -1,0 +1,106 @@
+#include "core/sample_set.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/error.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+SampleSet makeSamples(size_t n, uint32_t channels = 3) {
+    SampleSet s;
+    s.shOrder = 3;
+    s.channels = channels;
+    s.sceneFingerprint = 0x1234;
+    s.bounds.extend(Vec3(-1));
+    s.bounds.extend(Vec3(2));
+    s.parameters.seed = 42;
+    for (size_t i = 0; i < n; ++i) {
+        s.positions.emplace_back(float(i), 0.5f, -0.25f);
+        s.radii.push_back(0.1f + float(i));
+        s.widths.push_back(0.05f + float(i));
+        s.scattering.emplace_back(1.0f, 2.0f, 3.0f);
+        for (size_t k = 0; k < s.coefficientsPerSample(); ++k) s.sh.push_back(float(i * 100 + k));
+        s.truncationError.push_back(0.01f);
+    }
+    return s;
+}
+
+std::vector<char> bytesOf(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::filesystem::path& file, const std::vector<char>& bytes) {
+    std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+std::string readError(const std::filesystem::path& file) {
+    try {
+        readSampleFile(file);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(SampleFile, RoundTrips) {
+    test::ScratchDir dir;
+    const SampleSet s = makeSamples(7);
+    writeSampleFile(dir.path() / "s.lsf", s);
+    const SampleSet r = readSampleFile(dir.path() / "s.lsf");
+    EXPECT_EQ(r.size(), 7u);
+    EXPECT_EQ(r.shOrder, 3u);
+    EXPECT_EQ(r.channels, 3u);
+    EXPECT_EQ(r.sceneFingerprint, 0x1234u);
+    EXPECT_EQ(r.parameters.seed, 42u);
+    EXPECT_EQ(r.positions, s.positions);
+    EXPECT_EQ(r.sh, s.sh);
+    EXPECT_EQ(r.widths, s.widths);
+    EXPECT_EQ(r.bounds.max, Vec3(2));
+    // No temporary file is left next to it.
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(SampleFile, RejectsDamagedFiles) {
+    test::ScratchDir dir;
+    const auto good = dir.path() / "good.lsf";
+    writeSampleFile(good, makeSamples(5));
+    const std::vector<char> bytes = bytesOf(good);
+
+    auto damaged = [&](const std::string& name, std::vector<char> b) {
+        writeBytes(dir.path() / name, b);
+        return readError(dir.path() / name);
+    };
+    std::vector<char> truncated(bytes.begin(), bytes.end() - 20);
+    EXPECT_NE(damaged("truncated.lsf", truncated).find("truncated.lsf: sample file holds"), std::string::npos);
+    std::vector<char> header(bytes.begin(), bytes.begin() + 16);
+    EXPECT_NE(damaged("header.lsf", header).find("truncated"), std::string::npos);
+    std::vector<char> magic = bytes;
+    magic[0] = 'X';
+    EXPECT_NE(damaged("magic.lsf", magic).find("wrong magic number"), std::string::npos);
+    std::vector<char> version = bytes;
+    version[8] = 9;
+    EXPECT_NE(damaged("version.lsf", version).find("version 9 is not supported"), std::string::npos);
+    std::vector<char> flipped = bytes;
+    flipped[bytes.size() - 30] ^= 0x10;
+    EXPECT_NE(damaged("flipped.lsf", flipped).find("checksum does not match"), std::string::npos);
+    std::vector<char> grown = bytes;
+    grown.push_back(0);
+    EXPECT_NE(damaged("grown.lsf", grown).find("counts need"), std::string::npos);
+    EXPECT_NE(readError(dir.path() / "absent.lsf").find("cannot open sample file"), std::string::npos);
+}
+
+TEST(SampleFile, RejectsNonFiniteValues) {
+    test::ScratchDir dir;
+    SampleSet s = makeSamples(3);
+    s.sh[4] = std::nanf("");
+    writeSampleFile(dir.path() / "nan.lsf", s);  // a checksum-valid file that holds a NaN
+    EXPECT_NE(readError(dir.path() / "nan.lsf").find("non-finite value"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lucent

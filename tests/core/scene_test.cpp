@@ -1,0 +1,114 @@
+#include "core/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+const char* kValid = R"({
+  "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 64, "height": 48},
+  "lights": [{"type": "point", "position": [3, 3, 3], "intensity": [10, 10, 10]},
+             {"type": "directional", "direction": [0, -2, 0], "irradiance": 1}],
+  "objects": [{"mesh": "m/sphere.obj",
+               "medium": {"sigma_t": [1, 2, 3], "albedo": 0.75, "g": 0.3,
+                          "density": {"type": "layers", "axis": "y", "values": [1, 2]}},
+               "surface": {"diffuse": [0.8, 0.8, 0.8]},
+               "samples": "sphere.lsf"}],
+  "render": {"method": "reference", "surface": false}
+})";
+
+// Replaces the first occurrence of `from` in the valid scene.
+std::string variant(const std::string& from, const std::string& to) {
+    std::string s = kValid;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+}
+
+std::string errorOf(const std::string& text) {
+    try {
+        parseSceneText(text, "dir/scene.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(Scene, ParsesEveryField) {
+    const SceneDesc s = parseSceneText(kValid, "dir/scene.json");
+    EXPECT_EQ(s.camera.width, 64);
+    EXPECT_EQ(s.camera.up, Vec3(0, 1, 0));
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[1].direction, Vec3(0, -1, 0));
+    EXPECT_EQ(s.lights[1].power, Rgb(1.0));
+    const ObjectDesc& o = s.objects[0];
+    EXPECT_EQ(o.name, "sphere.obj");
+    EXPECT_EQ(o.mesh, std::filesystem::path("dir/m/sphere.obj"));
+    EXPECT_EQ(o.samples, std::filesystem::path("dir/sphere.lsf"));
+    EXPECT_EQ(o.medium.sigmaT, Rgb(1, 2, 3));
+    EXPECT_EQ(o.medium.albedo, Rgb(0.75));
+    EXPECT_DOUBLE_EQ(o.medium.g, 0.3);
+    EXPECT_DOUBLE_EQ(o.medium.ior, 1.0);
+    EXPECT_EQ(o.medium.density.type, DensityDesc::Type::Layers);
+    EXPECT_EQ(o.medium.density.axis, 1);
+    ASSERT_TRUE(o.surface.has_value());
+    EXPECT_EQ(o.surface->diffuse, Rgb(0.8));
+    EXPECT_EQ(s.render.method, "reference");
+    EXPECT_FALSE(s.render.surface);
+}
+
+TEST(Scene, ErrorsNameFileAndJsonPath) {
+    struct Case {
+        std::string from, to, message;
+    };
+    const std::vector<Case> cases = {
+        {"\"fov_y\": 40", "\"fov_y\": 40, \"fovy\": 1", "dir/scene.json: /camera/fovy: unknown key"},
+        {"\"width\": 64", "\"width\": \"64\"", "dir/scene.json: /camera/width: must be an integer"},
+        {"\"sigma_t\": [1, 2, 3]", "\"sigma_t\": [1, -2, 3]", "dir/scene.json: /objects/0/medium/sigma_t/1: must lie in"},
+        {"\"albedo\": 0.75", "\"albedo\": 1.5", "dir/scene.json: /objects/0/medium/albedo: must lie in [0, 1]"},
+        {"\"albedo\": 0.75,", "", "dir/scene.json: /objects/0/medium: missing required key 'albedo'"},
+        {"\"type\": \"point\"", "\"type\": \"spot\"", "dir/scene.json: /lights/0/type: unknown light type"},
+        {"\"values\": [1, 2]", "\"values\": [1, -2]", "dir/scene.json: /objects/0/medium/density/values/1: must be non-negative"},
+        {"\"direction\": [0, -2, 0]", "\"direction\": [0, 0, 0]", "/lights/1/direction: must not be the zero vector"},
+        {"\"method\": \"reference\"", "\"method\": \"magic\"", "/render/method: unknown method 'magic'"},
+        {"\"position\": [0, 0, 5]", "\"position\": [0, 0, 1e999]", "dir/scene.json: malformed JSON"},
+        {"\"samples\": \"sphere.lsf\"}]", "\"samples\": \"sphere.lsf\"}", "dir/scene.json: malformed JSON"},
+    };
+    for (const Case& c : cases) {
+        const std::string message = errorOf(variant(c.from, c.to));
+        EXPECT_NE(message.find(c.message), std::string::npos) << "got: " << message << "\nwanted: " << c.message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+    }
+}
+
+TEST(Scene, MissingFileIsAnError) {
+    try {
+        parseScene("/nonexistent/scene.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "/nonexistent/scene.json: cannot open scene file");
+    }
+}
+
+TEST(Scene, FingerprintFollowsMeshAndMedium) {
+    test::ScratchDir dir;
+    dir.write("m.obj", "v 0 0 0\n");
+    const std::string scene = R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
+      "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": SIGMA, "albedo": 0.5}, "samples": "s.lsf"}]})";
+    auto with = [&](const std::string& sigma) {
+        std::string s = scene;
+        s.replace(s.find("SIGMA"), 5, sigma);
+        return parseSceneText(s, dir.path() / "scene.json").objects[0].fingerprint;
+    };
+    EXPECT_EQ(with("1"), with("1"));
+    EXPECT_NE(with("1"), with("2"));
+    const uint64_t before = with("1");
+    dir.write("m.obj", "v 0 0 1\n");
+    EXPECT_NE(before, with("1"));
+}
+
+}  // namespace
+}  // namespace lucent

@@ -1,0 +1,75 @@
+#include "preprocess/poisson_disk.h"
+
+#include <gtest/gtest.h>
+
+#include "core/rng.h"
+
+namespace lucent {
+namespace {
+
+// A unit square in the z = 0 plane cut into 2 n^2 triangles, with a radius that
+// grows along x from rMin to rMax.
+RadiusSurface square(int n, double rMin, double rMax) {
+    RadiusSurface s;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            s.positions.emplace_back(double(i) / n, double(j) / n, 0.0);
+            s.radius.push_back(rMin + (rMax - rMin) * double(i) / n);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            s.triangles.push_back({a, b, d});
+            s.triangles.push_back({a, d, c});
+        }
+    return s;
+}
+
+void expectPoissonAndMaximal(const RadiusSurface& surface, double rMin, double rMax, double finest) {
+    const auto samples = poissonDiskSample(surface, 11, finest);
+    ASSERT_GT(samples.size(), 10u);
+    // No two samples closer than the larger of their radii.
+    for (size_t i = 0; i < samples.size(); ++i)
+        for (size_t j = i + 1; j < samples.size(); ++j) {
+            const double d = glm::length(samples[i].position - samples[j].position);
+            EXPECT_GE(d, std::max(samples[i].radius, samples[j].radius) * (1 - 1e-12)) << i << "," << j;
+        }
+    // Maximal: every point of the square is within (its own or the sample's) radius,
+    // plus at most the finest fragment size, of some sample.
+    Rng rng(2, 3);
+    double worst = 0.0;
+    for (int k = 0; k < 5000; ++k) {
+        const Vec3 x(rng.uniform(), rng.uniform(), 0.0);
+        const double rx = rMin + (rMax - rMin) * x.x;
+        double best = kInfinity;
+        for (const auto& s : samples)
+            best = std::min(best, glm::length(x - s.position) / std::max(rx, s.radius));
+        worst = std::max(worst, best);
+    }
+    EXPECT_LT(worst, 1.0 + finest / rMin);
+}
+
+TEST(PoissonDisk, ConstantRadiusIsPoissonAndMaximal) {
+    expectPoissonAndMaximal(square(20, 0.05, 0.05), 0.05, 0.05, 0.01);
+}
+
+TEST(PoissonDisk, VaryingRadiusIsPoissonAndMaximal) {
+    expectPoissonAndMaximal(square(40, 0.02, 0.08), 0.02, 0.08, 0.004);
+}
+
+TEST(PoissonDisk, DenserWhereRadiusIsSmaller) {
+    const auto samples = poissonDiskSample(square(40, 0.02, 0.08), 7, 0.004);
+    size_t left = 0, right = 0;
+    for (const auto& s : samples) (s.position.x < 0.5 ? left : right)++;
+    EXPECT_GT(left, 2 * right);
+}
+
+TEST(PoissonDisk, SameSeedSameSamples) {
+    const auto a = poissonDiskSample(square(10, 0.05, 0.1), 3, 0.01);
+    const auto b = poissonDiskSample(square(10, 0.05, 0.1), 3, 0.01);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].position, b[i].position);
+}
+
+}  // namespace
+}  // namespace lucent

@@ -1,0 +1,42 @@
+#pragma once
+// Helpers shared by the test suites: a scratch directory per test, small files,
+// and running the lucent binary.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "core/triangle_mesh.h"
+
+namespace lucent::test {
+
+// A fresh directory under the system temp dir, removed when the object dies.
+class ScratchDir {
+public:
+    ScratchDir();
+    ~ScratchDir();
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path write(const std::string& name, const std::string& contents) const;
+
+private:
+    std::filesystem::path path_;
+};
+
+std::filesystem::path sourceDir();
+std::filesystem::path modelsDir();
+std::filesystem::path dataDir();
+
+// The ObjectDesc for a mesh with a constant medium, fingerprint left 0.
+ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo = 0.5);
+
+// Runs build/bin/lucent with args; captures the exit code and stderr.
+struct RunResult {
+    int exitCode;
+    std::string stderrText;
+};
+RunResult runLucent(const std::string& args);
+
+// Parses a CSV file, skipping lines starting with '#' and the header line.
+std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file);
+
+}  // namespace lucent::test
