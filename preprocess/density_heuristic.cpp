@@ -1,5 +1,8 @@
 #include "preprocess/density_heuristic.h"
 
+#include <openvdb/tools/GridOperators.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -9,29 +12,36 @@
 
 namespace lucent {
 
-FirstMomentStencils sampleFirstMoments(const VolumeObject& object, const std::vector<Vec3>& points,
-                                       const HeuristicSettings& settings) {
-    FirstMomentStencils result;
-    result.stencils.resize(points.size());
-    const std::vector<Vec3> lattice = fibonacciSphere(settings.directions);
+HeuristicField sampleFirstMoment(const VolumeObject& object, const DistanceField& distance,
+                                 const HeuristicSettings& settings) {
+    HeuristicField field;
+    field.centre = distance.centre();
+    field.firstMoment = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    field.firstMoment->setTransform(distance.grid().transform().copy());
+    field.firstMoment->topologyUnion(distance.grid());
+    field.receivable = openvdb::FloatGrid::create(0.0f);
+    field.receivable->setTransform(distance.grid().transform().copy());
+    field.receivable->topologyUnion(distance.grid());
+
+    std::vector<Vec3> dirs = fibonacciSphere(settings.directions);
+    Rng rng(settings.seed, 0x4845);
+    const glm::dmat3 rotation = randomRotation(rng);
+    for (Vec3& w : dirs) w = rotation * w;
     const double weight = 4.0 * kPi / settings.directions;
-    const Vec3 axes[3] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-    Progress progress("density heuristic", points.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<Vec3> dirs(lattice.size());
-        for (size_t i = range.begin(); i < range.end(); ++i) {
-            auto& s = result.stencils[i];
-            if (object.insideBlocker(points[i])) {
-                s.blocked = true;
-                continue;
-            }
-            // Stratified Monte Carlo: the lattice under a random rotation of this point's
-            // own. All six neighbours share it, so the noise cancels in the differences.
-            Rng rng(settings.seed, i);
-            const glm::dmat3 rotation = randomRotation(rng);
-            for (size_t k = 0; k < lattice.size(); ++k) dirs[k] = rotation * lattice[k];
-            for (int n = 0; n < 6; ++n) {
-                const Vec3 x = points[i] + (n % 2 == 0 ? 1.0 : -1.0) * settings.step * axes[n / 2];
+
+    openvdb::tree::LeafManager<openvdb::Vec3STree> moments(field.firstMoment->tree());
+    openvdb::tree::LeafManager<openvdb::FloatTree> receivable(field.receivable->tree());
+    const auto& transform = field.firstMoment->transform();
+    Progress progress("density heuristic", moments.leafCount());
+    // Leaves are visited in a fixed order and every voxel's value depends only on its
+    // position, so the result is the same for any number of threads.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, moments.leafCount(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t l = r.begin(); l < r.end(); ++l) {
+            auto& leafT = moments.leaf(l);
+            auto* leafS = receivable.leaf(l).buffer().data();
+            for (auto it = leafT.beginValueOn(); it; ++it) {
+                const openvdb::Vec3d p = transform.indexToWorld(it.getCoord());
+                const Vec3 x = field.centre + Vec3(p.x(), p.y(), p.z());
                 Vec3 moment(0.0);
                 double zeroth = 0.0;
                 for (const Vec3& w : dirs) {
@@ -40,30 +50,31 @@ FirstMomentStencils sampleFirstMoments(const VolumeObject& object, const std::ve
                     moment += f * w;
                     zeroth += f;
                 }
-                s.moment[n] = weight * moment;
-                s.zeroth[n] = weight * zeroth;
+                it.setValue(openvdb::Vec3s(float(weight * moment.x), float(weight * moment.y), float(weight * moment.z)));
+                leafS[it.pos()] = float(weight * zeroth / (4.0 * kPi));
             }
             progress.advance();
         }
     });
-    result.raysCast = uint64_t(points.size()) * 6 * lattice.size();
-    return result;
+    field.raysCast = uint64_t(field.firstMoment->activeVoxelCount()) * dirs.size();
+    return field;
 }
 
-std::vector<HeuristicPoint> divergenceDensity(const FirstMomentStencils& moments, const HeuristicSettings& settings) {
-    std::vector<HeuristicPoint> out(moments.stencils.size());
-    for (size_t i = 0; i < out.size(); ++i) {
-        const auto& s = moments.stencils[i];
-        if (s.blocked) continue;
-        // Central differences, thesis 3.2.3.
-        const double div = (s.moment[0].x - s.moment[1].x + s.moment[2].y - s.moment[3].y + s.moment[4].z -
-                            s.moment[5].z) / (2.0 * settings.step);
-        double zeroth = 0.0;
-        for (double z : s.zeroth) zeroth += z;
-        out[i].density = std::abs(div);
-        out[i].receivable = zeroth / 6.0 / (4.0 * kPi);
-        out[i].culled = out[i].receivable < settings.cullEpsilon;
-    }
+std::vector<HeuristicPoint> densityAtPoints(HeuristicField& field, const std::vector<Vec3>& points,
+                                            const HeuristicSettings& settings) {
+    field.divergence = openvdb::tools::divergence(*field.firstMoment);
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> div(*field.divergence);
+    const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> receivable(*field.receivable);
+    std::vector<HeuristicPoint> out(points.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const Vec3 q = points[i] - field.centre;
+            const openvdb::Vec3d p(q.x, q.y, q.z);
+            out[i].density = std::abs(div.wsSample(p));
+            out[i].receivable = receivable.wsSample(p);
+            out[i].culled = out[i].receivable < settings.cullEpsilon;
+        }
+    });
     return out;
 }
 

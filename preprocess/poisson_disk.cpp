@@ -35,15 +35,21 @@ public:
         next_[index] = head_[c];
         head_[c] = index;
     }
+    // Calls predicate(sample) for the samples in the 27 cells around p, the cell
+    // of p first (where a conflict or a covering disk is most likely), until it says yes.
     template <class F>
     bool anyNear(const Vec3& p, const F& predicate) const {
         const glm::ivec3 c = cellOf(p);
+        for (int32_t i = head_[flat(c)]; i >= 0; i = next_[i])
+            if (predicate(uint32_t(i))) return true;
         const glm::ivec3 lo = glm::max(c - 1, glm::ivec3(0)), hi = glm::min(c + 1, dims_ - 1);
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
-                for (int x = lo.x; x <= hi.x; ++x)
+                for (int x = lo.x; x <= hi.x; ++x) {
+                    if (x == c.x && y == c.y && z == c.z) continue;
                     for (int32_t i = head_[flat({x, y, z})]; i >= 0; i = next_[i])
                         if (predicate(uint32_t(i))) return true;
+                }
         return false;
     }
 
@@ -85,19 +91,23 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
     SampleGrid grid(bounds, maxRadius);
     Rng rng(seed, 0x9d5c);
 
+    // The distance tests read a compact copy (centre and radius in 32 bytes, contiguous).
+    std::vector<glm::dvec4> disks;
     auto conflicts = [&](const Vec3& x, double rx) {
         return grid.anyNear(x, [&](uint32_t i) {
-            const double r = std::max(rx, samples[i].radius);
-            const Vec3 d = x - samples[i].position;
+            const glm::dvec4& q = disks[i];
+            const double r = std::max(rx, q.w);
+            const Vec3 d = x - Vec3(q);
             return glm::dot(d, d) < r * r;
         });
     };
     // A disk is convex, so it covers a triangle when it holds all three corners.
     auto covered = [&](const Fragment& f) {
         return grid.anyNear(f.p[0], [&](uint32_t i) {
-            const double r2 = samples[i].radius * samples[i].radius;
+            const glm::dvec4& q = disks[i];
+            const double r2 = q.w * q.w;
             for (const Vec3& c : f.p) {
-                const Vec3 d = c - samples[i].position;
+                const Vec3 d = c - Vec3(q);
                 if (glm::dot(d, d) >= r2) return false;
             }
             return true;
@@ -144,6 +154,7 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         if (!conflicts(x, rx)) {
             grid.insert(x, int32_t(samples.size()));
             samples.push_back({x, rx});
+            disks.emplace_back(x, rx);
         }
         if (covered(f) || f.longestEdge() < finestEdge) continue;
         // Split into four at the edge midpoints; uncovered children go one level down.

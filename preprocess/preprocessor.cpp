@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "preprocess/density_heuristic.h"
-#include "preprocess/offset_layers.h"
+#include "preprocess/distance_field.h"
 #include "preprocess/poisson_disk.h"
 #include "preprocess/sh_projection.h"
 
@@ -115,10 +115,11 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     }
     std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n", name.c_str(),
                  depths.size(), spacing, std::min(maxDepth, 1e300));
-    // Marching cubes at voxel size r: fine enough to follow the surface at the scale
-    // samples resolve, and four times fewer vertices to run the heuristic on than at
-    // the layer spacing.
-    const std::vector<OffsetLayer> layers = buildOffsetLayers(mesh, depths, r);
+    // One distance field serves the layers and the heuristic. Its voxels are 1.5 r:
+    // fine enough for marching cubes to follow the surface at the scale samples
+    // resolve, and for central differences of T, which varies over a mean free path.
+    const DistanceField distance(mesh, 1.5 * r, depths.empty() ? spacing : depths.back());
+    const std::vector<OffsetLayer> layers = distance.offsetLayers(depths);
     if (layers.empty()) throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " + std::to_string(0.5 * spacing));
 
     RadiusSurface surface;
@@ -131,17 +132,16 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     t.layerVertices = surface.positions.size();
     t.layers = clock.lap();
 
-    // Density heuristic at every layer vertex.
+    // Density heuristic, read at every layer vertex.
     HeuristicSettings heuristic;
     heuristic.directions = settings.heuristicDirections;
-    heuristic.step = 0.25 * spacing;
     heuristic.extinction = minSigmaT;
     heuristic.cullEpsilon = settings.cullEpsilon;
     heuristic.seed = settings.seed;
-    const FirstMomentStencils moments = sampleFirstMoments(object, surface.positions, heuristic);
-    t.heuristicRays = moments.raysCast;
+    HeuristicField heuristicField = sampleFirstMoment(object, distance, heuristic);
+    t.heuristicRays = heuristicField.raysCast;
     t.firstMoments = clock.lap();
-    const std::vector<HeuristicPoint> density = divergenceDensity(moments, heuristic);
+    const std::vector<HeuristicPoint> density = densityAtPoints(heuristicField, surface.positions, heuristic);
     const auto [rhoLo, rhoHi] = densityRange(density);
     t.divergence = clock.lap();
 
@@ -169,7 +169,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     };
     const double target = std::max(settings.samples, 1);
     double n0 = sampleWith(r);
-    for (int iteration = 0; iteration < 3 && std::abs(n0 / target - 1.0) > 0.05; ++iteration) {
+    for (int iteration = 0; iteration < 3 && std::abs(n0 / target - 1.0) > 0.08; ++iteration) {
         const double r1 = r * std::cbrt(n0 / target);
         const double n1 = sampleWith(r1);
         const double k = std::clamp(std::log(n1 / n0) / std::log(r / r1), 1.5, 3.5);

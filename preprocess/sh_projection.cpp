@@ -17,22 +17,28 @@ ProjectionResult projectAttenuation(const VolumeObject& object, const std::vecto
     result.channels = channels;
     result.coefficients.assign(positions.size() * size_t(channels) * n, 0.0f);
     result.truncationError.assign(positions.size(), 0.0f);
-    const std::vector<Vec3> lattice = fibonacciSphere(settings.directions);
+    // One randomly rotated lattice for every sample: its basis values are computed
+    // once, and every sample's quadrature error has the same structure.
+    std::vector<Vec3> lattice = fibonacciSphere(settings.directions);
+    Rng rng(settings.seed ^ 0x5348ull, 0);
+    const glm::dmat3 rotation = randomRotation(rng);
+    std::vector<double> basisTable(lattice.size() * n);
+    for (size_t k = 0; k < lattice.size(); ++k) {
+        lattice[k] = rotation * lattice[k];
+        evaluateSh(settings.order, lattice[k], std::span<double>(&basisTable[k * n], n));
+    }
     const double weight = 4.0 * kPi / settings.directions;
     const Rgb sigmaT = object.desc().medium.sigmaT;
     Progress progress("SH projection", positions.size());
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 32), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<double> basis(n), coefficients(size_t(channels) * n);
+        std::vector<double> coefficients(size_t(channels) * n);
         for (size_t i = range.begin(); i < range.end(); ++i) {
-            Rng rng(settings.seed ^ 0x5348ull, i);
-            const glm::dmat3 rotation = randomRotation(rng);
             std::fill(coefficients.begin(), coefficients.end(), 0.0);
             double squaredNorm[3] = {0, 0, 0};
-            for (const Vec3& l : lattice) {
-                const Vec3 w = rotation * l;
-                const Rgb psi = transmittance(sigmaT, object.densityPath(positions[i], w));
-                evaluateSh(settings.order, w, basis);
+            for (size_t d = 0; d < lattice.size(); ++d) {
+                const Rgb psi = transmittance(sigmaT, object.densityPath(positions[i], lattice[d]));
+                const double* basis = &basisTable[d * n];
                 for (int c = 0; c < channels; ++c) {
                     squaredNorm[c] += weight * psi[c] * psi[c];
                     for (int k = 0; k < n; ++k) coefficients[size_t(c) * n + k] += weight * psi[c] * basis[k];

@@ -1,4 +1,4 @@
-#include "preprocess/offset_layers.h"
+#include "preprocess/distance_field.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ void expectLayersAtTheirDepth(const std::string& model, const std::vector<double
     std::vector<std::string> warnings;
     const TriangleMesh mesh = loadClosedMesh(test::modelsDir() / model, warnings);
     const MeshRaycaster boundary(mesh);
-    const auto layers = buildOffsetLayers(mesh, depths, voxel);
+    const auto layers = DistanceField(mesh, voxel, depths.back()).offsetLayers(depths);
     ASSERT_EQ(layers.size(), depths.size()) << model;
     for (const auto& layer : layers) {
         ASSERT_FALSE(layer.surface.positions.empty());
@@ -32,19 +32,19 @@ void expectLayersAtTheirDepth(const std::string& model, const std::vector<double
     }
 }
 
-TEST(OffsetLayers, SphereLayersSitAtTheirOffset) {
+TEST(DistanceField, SphereLayersSitAtTheirOffset) {
     expectLayersAtTheirDepth("sphere.obj", {0.025, 0.1, 0.3, 0.6}, 0.05, 0.15, 0.03);
 }
 
-TEST(OffsetLayers, ScannedModelLayersSitAtTheirOffset) {
+TEST(DistanceField, ScannedModelLayersSitAtTheirOffset) {
     // Thin parts (ears) and creases make the distance field kink; the bound is looser.
     expectLayersAtTheirDepth("bunny.off", {0.01, 0.03}, 0.01, 0.6, 0.05);
 }
 
-TEST(OffsetLayers, StopsBelowTheDeepestPoint) {
+TEST(DistanceField, StopsBelowTheDeepestPoint) {
     std::vector<std::string> warnings;
     const TriangleMesh mesh = loadClosedMesh(test::modelsDir() / "sphere.obj", warnings);
-    const auto layers = buildOffsetLayers(mesh, {0.5, 0.9, 1.2, 1.5}, 0.05);
+    const auto layers = DistanceField(mesh, 0.05, 1.5).offsetLayers({0.5, 0.9, 1.2, 1.5});
     EXPECT_EQ(layers.size(), 2u);
 }
 

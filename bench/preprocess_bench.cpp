@@ -1,0 +1,74 @@
+// Preprocessing benchmark: the per-stage times of thesis Table 3.1 (optical depth
+// for the heuristic, divergence, Poisson-disk sampling, SH projection) and rays
+// cast per second, for several heuristic direction counts, median of repeated runs.
+//
+//   build/bin/lucent-bench-preprocess [SCENE] [--samples N] [--repeats R] [--directions 64,128,256]
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+#include "preprocess/preprocessor.h"
+
+using namespace lucent;
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Lucent preprocessing benchmark (thesis Table 3.1)"};
+    std::string sceneFile = std::string(LUCENT_SOURCE_DIR) + "/models/bunny.json";
+    int samples = 50000, repeats = 3;
+    std::vector<int> directions = {64, 128, 256};
+    app.add_option("scene", sceneFile, "Scene whose first object is preprocessed");
+    app.add_option("--samples", samples, "Target sample count");
+    app.add_option("--repeats", repeats, "Runs per setting (the median is reported)");
+    app.add_option("--directions", directions, "Heuristic direction counts")->delimiter(',');
+    CLI11_PARSE(app, argc, argv);
+    try {
+        const SceneDesc scene = parseScene(sceneFile);
+        std::vector<std::string> warnings;
+        const VolumeObject object(scene.objects.front(), warnings);
+        std::printf("scene %s, object %s: %zu triangles, target %d samples, %d repeats (median)\n\n",
+                    sceneFile.c_str(), object.desc().name.c_str(), object.mesh().triangles.size(), samples, repeats);
+        std::printf("| directions | samples | layers (s) | optical depth for heuristic (s) | divergence (s) | Poisson disks (s) | SH projection (s) | total (s) | Mrays/s |\n");
+        std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for (int d : directions) {
+            std::vector<double> layers, moments, divergence, poisson, projection, total, rate;
+            size_t count = 0;
+            for (int r = 0; r < repeats; ++r) {
+                PreprocessSettings settings;
+                settings.samples = samples;
+                settings.heuristicDirections = d;
+                PreprocessTimings t;
+                count = preprocessObject(object, settings, &t).size();
+                layers.push_back(t.layers);
+                moments.push_back(t.firstMoments);
+                divergence.push_back(t.divergence);
+                poisson.push_back(t.poissonDisk);
+                projection.push_back(t.projection);
+                total.push_back(t.total());
+                rate.push_back(double(t.heuristicRays + t.projectionRays) / (t.firstMoments + t.projection) / 1e6);
+            }
+            std::printf("| %d | %zu | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", d, count, median(layers),
+                        median(moments), median(divergence), median(poisson), median(projection), median(total),
+                        median(rate));
+            std::fflush(stdout);
+        }
+    } catch (const Error& e) {
+        std::fprintf(stderr, "lucent-bench-preprocess: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,38 @@
+#pragma once
+// The signed distance to an object's boundary on a narrow-band OpenVDB grid
+// (negative inside), reaching from just outside down to a given depth. The offset
+// layers are its iso-surfaces and the density heuristic lives on its voxels.
+#include <openvdb/openvdb.h>
+
+#include <vector>
+
+#include "core/triangle_mesh.h"
+
+namespace lucent {
+
+struct OffsetLayer {
+    double depth;  // distance under the boundary
+    TriangleMesh surface;
+};
+
+class DistanceField {
+public:
+    DistanceField(const TriangleMesh& boundary, double voxelSize, double deepest);
+
+    // Offset layers (thesis 3.2.2), extracted by marching cubes; depths ascending.
+    // A depth below the object's deepest point yields no layer, so fewer may return.
+    std::vector<OffsetLayer> offsetLayers(const std::vector<double>& depths) const;
+
+    // The grid lives in coordinates relative to centre() (single-precision voxels
+    // keep their accuracy for models far from the origin).
+    const openvdb::FloatGrid& grid() const { return *grid_; }
+    const Vec3& centre() const { return centre_; }
+    double voxelSize() const { return voxelSize_; }
+
+private:
+    openvdb::FloatGrid::Ptr grid_;
+    Vec3 centre_;
+    double voxelSize_;
+};
+
+}  // namespace lucent
