@@ -59,7 +59,14 @@ Rgb VolumeObject::extinction(const Vec3& p) const {
 std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings) {
     std::vector<VolumeObject> objects;
     objects.reserve(scene.objects.size());
-    for (const auto& desc : scene.objects) objects.emplace_back(desc, warnings);
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        try {
+            objects.emplace_back(scene.objects[i], warnings);
+        } catch (const Error& e) {
+            // Name the scene entry as well as the file that failed.
+            throw Error(scene.file.string(), "/objects/" + std::to_string(i) + ": " + e.what());
+        }
+    }
     return objects;
 }
 

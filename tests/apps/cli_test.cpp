@@ -38,7 +38,10 @@ protected:
     test::ScratchDir dir;
 };
 
-TEST_F(BadInput, MissingMesh) { expectFailure(preprocess(scene("absent.obj")), "absent.obj: cannot open mesh file"); }
+TEST_F(BadInput, MissingMesh) {
+    const std::string line = expectFailure(preprocess(scene("absent.obj")), "absent.obj: cannot open mesh file");
+    EXPECT_NE(line.find("scene.json: /objects/0: "), std::string::npos) << line;
+}
 
 TEST_F(BadInput, MeshWithAHole) {
     dir.write("hole.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");

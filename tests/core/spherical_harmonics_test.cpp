@@ -89,7 +89,9 @@ TEST(SphericalHarmonics, ClampedCosineProjectionMatchesPublishedZonalCoefficient
     }
     for (int l = 0; l < order; ++l)
         for (int m = -l; m <= l; ++m)
-            if (m != 0) EXPECT_NEAR(coefficients[shIndex(l, m)], 0.0, 1e-4);
+            if (m != 0) {
+                EXPECT_NEAR(coefficients[shIndex(l, m)], 0.0, 1e-4);
+            }
 }
 
 TEST(SphericalHarmonics, ProjectionRoundTripRecoversCoefficients) {
