@@ -53,9 +53,9 @@ Command addPreprocessCommand(CLI::App& app) {
             writeSampleFile(object.desc().samples, samples);
             std::fprintf(stderr,
                          "lucent: %s: %zu samples in %.2f s (layers %.2f, heuristic %.2f, divergence %.2f, "
-                         "Poisson disks %.2f, SH %.2f) -> %s\n",
+                         "Poisson disks %.2f in %zu passes, SH %.2f) -> %s\n",
                          object.desc().name.c_str(), samples.size(), timings.total(), timings.layers,
-                         timings.firstMoments, timings.divergence, timings.poissonDisk, timings.projection,
+                         timings.firstMoments, timings.divergence, timings.poissonDisk, timings.poissonPasses, timings.projection,
                          object.desc().samples.string().c_str());
         }
     };

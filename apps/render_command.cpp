@@ -10,6 +10,7 @@
 #include "core/scene.h"
 #include "core/volume_object.h"
 #include "reference/reference_renderer.h"
+#include "runtime/render_ss.h"
 
 namespace lucent {
 
@@ -40,13 +41,16 @@ Command addRenderCommand(CLI::App& app) {
         if (o->width) scene.camera.width = o->width;
         if (o->height) scene.camera.height = o->height;
         std::string method = o->method.empty() ? scene.render.method : o->method;
+        std::string why;
         if (method == "auto") {
-            // Only the ground truth exists so far; auto will weigh faster methods as they land.
-            std::fprintf(stderr, "lucent: auto: using method 'reference' (the only single-scattering method built)\n");
-            method = "reference";
+            // Single scattering is the only fast method built so far; auto will weigh
+            // the multiple-scattering methods against the albedo when they land.
+            why = ", chosen by auto: the only interactive method built";
+            method = "ss";
         }
-        if (method != "reference")
-            throw Error("method '" + method + "' is not available in this build (available: reference)");
+        if (method != "reference" && method != "ss")
+            throw Error("method '" + method + "' is not available in this build (available: ss, reference)");
+        const GlBackend backend = parseGlBackend(o->backend);
         std::unique_ptr<tbb::global_control> threads;
         if (o->threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
@@ -58,14 +62,25 @@ Command addRenderCommand(CLI::App& app) {
                 warnings.push_back(obj.desc().name + ": ior " + std::to_string(obj.desc().medium.ior) +
                                    " is treated as index-matched (refraction is not simulated by single scattering)");
         printWarnings(warnings);
-        ReferenceSettings settings;
-        settings.tolerance = o->tolerance;
-        settings.surface = !o->noSurface;
-        settings.threads = o->threads;
-        const Image image = ReferenceRenderer(scene, objects).render(settings);
+        const bool surface = !o->noSurface && scene.render.surface;
+        Image image;
+        if (method == "ss") {
+            SsSettings settings;
+            settings.backend = backend;
+            settings.surface = surface;
+            std::string used;
+            image = renderSingleScattering(scene, objects, settings, &used);
+            method += " on " + used;
+        } else {
+            ReferenceSettings settings;
+            settings.tolerance = o->tolerance;
+            settings.surface = surface;
+            settings.threads = o->threads;
+            image = ReferenceRenderer(scene, objects).render(settings);
+        }
         writeImage(o->output, image, o->exposure);
-        std::fprintf(stderr, "lucent: wrote %s (%dx%d, method %s)\n", o->output.c_str(), image.width, image.height,
-                     method.c_str());
+        std::fprintf(stderr, "lucent: wrote %s (%dx%d, method %s%s)\n", o->output.c_str(), image.width, image.height,
+                     method.c_str(), why.c_str());
     };
 }
 

@@ -1,6 +1,7 @@
 #include "preprocess/poisson_disk.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/rng.h"
 
@@ -16,14 +17,12 @@ struct Fragment {
     }
 };
 
-// Samples binned into cubic cells at least as wide as the largest radius, so
-// every disk that can reach a point lies in the 27 cells around it. A dense grid
-// of linked lists: no hashing, no per-cell allocation.
+// Samples binned into cubic cells, a dense grid of linked lists (no hashing, no
+// per-cell allocation). anyNear visits every sample that can lie within reach.
 class SampleGrid {
 public:
-    SampleGrid(const Bounds3& bounds, double maxRadius) : origin_(bounds.min) {
+    SampleGrid(const Bounds3& bounds, double cell) : origin_(bounds.min), cell_(cell) {
         const Vec3 extent = bounds.extent();
-        cell_ = maxRadius;
         // Keep the grid under 2^24 cells; wider cells stay correct, only slower.
         while (cellCount(extent) > (size_t(1) << 24)) cell_ *= 1.5;
         dims_ = glm::ivec3(glm::floor(extent / cell_)) + 1;
@@ -31,18 +30,19 @@ public:
     }
     void insert(const Vec3& p, int32_t index) {
         const size_t c = flat(cellOf(p));
-        if (next_.size() <= size_t(index)) next_.resize(size_t(index) + 1);
+        if (next_.size() <= size_t(index)) next_.resize(size_t(index) + 1, -1);
         next_[index] = head_[c];
         head_[c] = index;
     }
-    // Calls predicate(sample) for the samples in the 27 cells around p, the cell
-    // of p first (where a conflict or a covering disk is most likely), until it says yes.
+    // Calls predicate(sample) for the samples in the cells within reach of p, the
+    // cell of p first (where a conflict or a covering disk is most likely), until it says yes.
     template <class F>
-    bool anyNear(const Vec3& p, const F& predicate) const {
+    bool anyNear(const Vec3& p, double reach, const F& predicate) const {
         const glm::ivec3 c = cellOf(p);
         for (int32_t i = head_[flat(c)]; i >= 0; i = next_[i])
             if (predicate(uint32_t(i))) return true;
-        const glm::ivec3 lo = glm::max(c - 1, glm::ivec3(0)), hi = glm::min(c + 1, dims_ - 1);
+        const int k = int(std::ceil(reach / cell_));
+        const glm::ivec3 lo = glm::max(c - k, glm::ivec3(0)), hi = glm::min(c + k, dims_ - 1);
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
                 for (int x = lo.x; x <= hi.x; ++x) {
@@ -68,6 +68,38 @@ private:
     std::vector<int32_t> head_, next_;
 };
 
+// Radii vary by a factor of four. One grid sized for the largest radius would make
+// small disks scan many neighbours; instead samples go to one grid per octave of
+// radius, each with cells as wide as its largest radius, and a query reaches into
+// each grid only as far as a disk of that octave (or the query's own radius) can.
+class MultiscaleGrid {
+public:
+    MultiscaleGrid(const Bounds3& bounds, double minRadius, double maxRadius) : minRadius_(minRadius) {
+        for (double upper = 2.0 * minRadius;; upper *= 2.0) {
+            upper = std::min(upper, maxRadius);
+            grids_.emplace_back(bounds, upper);
+            uppers_.push_back(upper);
+            if (upper >= maxRadius) break;
+        }
+    }
+    void insert(const Vec3& p, double radius, int32_t index) { grids_[octave(radius)].insert(p, index); }
+    template <class F>
+    bool anyNear(const Vec3& p, double ownReach, const F& predicate) const {
+        for (size_t k = 0; k < grids_.size(); ++k)
+            if (grids_[k].anyNear(p, std::max(ownReach, uppers_[k]), predicate)) return true;
+        return false;
+    }
+
+private:
+    size_t octave(double radius) const {
+        const double k = std::floor(std::log2(std::max(radius / minRadius_, 1.0)));
+        return std::min(size_t(std::max(k, 0.0)), grids_.size() - 1);
+    }
+    double minRadius_;
+    std::vector<SampleGrid> grids_;
+    std::vector<double> uppers_;
+};
+
 struct Level {
     std::vector<Fragment> fragments;
     double totalArea = 0.0;
@@ -85,16 +117,16 @@ struct Level {
 std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge) {
     std::vector<DiskSample> samples;
     if (surface.triangles.empty()) return samples;
-    const double maxRadius = *std::max_element(surface.radius.begin(), surface.radius.end());
+    const auto [minIt, maxIt] = std::minmax_element(surface.radius.begin(), surface.radius.end());
     Bounds3 bounds;
     for (const Vec3& p : surface.positions) bounds.extend(p);
-    SampleGrid grid(bounds, maxRadius);
+    MultiscaleGrid grid(bounds, *minIt, *maxIt);
     Rng rng(seed, 0x9d5c);
 
     // The distance tests read a compact copy (centre and radius in 32 bytes, contiguous).
     std::vector<glm::dvec4> disks;
     auto conflicts = [&](const Vec3& x, double rx) {
-        return grid.anyNear(x, [&](uint32_t i) {
+        return grid.anyNear(x, rx, [&](uint32_t i) {
             const glm::dvec4& q = disks[i];
             const double r = std::max(rx, q.w);
             const Vec3 d = x - Vec3(q);
@@ -103,7 +135,7 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
     };
     // A disk is convex, so it covers a triangle when it holds all three corners.
     auto covered = [&](const Fragment& f) {
-        return grid.anyNear(f.p[0], [&](uint32_t i) {
+        return grid.anyNear(f.p[0], 0.0, [&](uint32_t i) {
             const glm::dvec4& q = disks[i];
             const double r2 = q.w * q.w;
             for (const Vec3& c : f.p) {
@@ -152,7 +184,7 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         const Vec3 x = f.p[0] + u * (f.p[1] - f.p[0]) + v * (f.p[2] - f.p[0]);
         const double rx = f.r[0] + u * (f.r[1] - f.r[0]) + v * (f.r[2] - f.r[0]);
         if (!conflicts(x, rx)) {
-            grid.insert(x, int32_t(samples.size()));
+            grid.insert(x, rx, int32_t(samples.size()));
             samples.push_back({x, rx});
             disks.emplace_back(x, rx);
         }

@@ -70,13 +70,13 @@ double negligibleLightDepth(double extinction, double epsilon) {
 PreprocessSettings qualityPreset(const std::string& name) {
     PreprocessSettings s;
     if (name == "draft") {
-        s.samples = 4000;
+        s.samples = 8000;
         s.heuristicDirections = 32;
         s.projectionDirections = 128;
         s.shOrder = 4;
     } else if (name == "default") {
     } else if (name == "high") {
-        s.samples = 80000;
+        s.samples = 120000;
         s.heuristicDirections = 128;
         s.projectionDirections = 512;
         s.shOrder = 6;
@@ -165,6 +165,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
         live.radius.resize(relativeRadius.size());
         for (size_t i = 0; i < relativeRadius.size(); ++i) live.radius[i] = radius * relativeRadius[i];
         disks = poissonDiskSample(live, settings.seed, 0.2 * radius);
+        ++t.poissonPasses;
         return double(std::max<size_t>(disks.size(), 1));
     };
     const double target = std::max(settings.samples, 1);

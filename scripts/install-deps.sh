@@ -11,6 +11,10 @@ packages=(
   libembree-dev libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
   # image output
   libpng-dev libopenexr-dev
+  # OpenGL: EGL and OSMesa on Mesa's llvmpipe (libgl1-mesa-dri is what EGL needs
+  # and nothing depends on), the glad loader generator, GLFW + Dear ImGui for the
+  # viewer, Xvfb to test the viewer without a display
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libglfw3-dev libimgui-dev xvfb xauth
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -21,8 +21,8 @@ class BadInput : public ::testing::Test {
 protected:
     // Runs `lucent ARGS` and checks the contract; returns the error line.
     std::string expectFailure(const std::string& args, const std::string& mustMention,
-                              const std::string& mustNotExist = "out.lsf") {
-        const auto result = test::runLucent(args);
+                              const std::string& mustNotExist = "out.lsf", const std::string& environment = "") {
+        const auto result = test::runLucent(args, environment);
         EXPECT_NE(result.exitCode, 0) << args;
         EXPECT_EQ(result.stderrText.rfind("lucent: error: ", 0), 0u) << result.stderrText;
         EXPECT_EQ(std::count(result.stderrText.begin(), result.stderrText.end(), '\n'), 1) << result.stderrText;
@@ -109,6 +109,43 @@ TEST_F(BadInput, UnwritableOutputPath) {
     std::string text = scene((test::modelsDir() / "cube.obj").string());
     text.replace(text.find("out.lsf"), 7, samples);
     expectFailure(preprocess(text), "s.lsf: cannot write");
+}
+
+// --method ss needs the object's sample file, whole and made for it.
+class BadSampleFile : public BadInput {
+protected:
+    void SetUp() override {
+        sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+        const auto run = test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300");
+        ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    }
+    std::string render(const std::string& extra = "") {
+        return "render " + sceneFile.string() + " -o " + (dir.path() / "img.png").string() +
+               " --method ss --width 16 --height 16 " + extra;
+    }
+    std::filesystem::path sceneFile;
+};
+
+TEST_F(BadSampleFile, Truncated) {
+    std::filesystem::resize_file(dir.path() / "out.lsf", std::filesystem::file_size(dir.path() / "out.lsf") - 10);
+    expectFailure(render(), "out.lsf: sample file holds", "img.png");
+}
+
+TEST_F(BadSampleFile, Missing) {
+    std::filesystem::remove(dir.path() / "out.lsf");
+    expectFailure(render(), "out.lsf: cannot open sample file", "img.png");
+}
+
+TEST_F(BadSampleFile, MadeForAnotherMedium) {
+    std::string text = scene((test::modelsDir() / "sphere.obj").string(), R"("sigma_t": 3, "albedo": 0.5)");
+    dir.write("scene.json", text);
+    expectFailure(render(), "out.lsf: sample file was made for a different mesh or medium", "img.png");
+}
+
+TEST_F(BadSampleFile, NoUsableGlContextSaysWhichBackend) {
+    // glvnd finds no EGL vendor library: EGL cannot give a display.
+    expectFailure(render("--backend egl"), "no usable OpenGL context: egl: ", "img.png",
+                  "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
 }
 
 TEST_F(BadInput, UnknownSubcommandOption) {

@@ -31,7 +31,7 @@ TEST(Preprocessor, SphereSamplesAreInsideAndNearTheRequestedCount) {
         EXPECT_GE(set.radii[i], 0.5 * r * (1 - 1e-5));
         EXPECT_LE(set.radii[i], 2.0 * r * (1 + 1e-5));
         // FWHM = width factor * radius.
-        EXPECT_NEAR(set.widths[i] * 2.0 * std::sqrt(2.0 * std::log(2.0)), set.radii[i], 1e-5);
+        EXPECT_NEAR(set.widths[i] * 2.0 * std::sqrt(2.0 * std::log(2.0)), small().widthFactor * set.radii[i], 1e-5);
         EXPECT_NEAR(set.scattering[i].g, 1.5, 1e-6);
     }
     EXPECT_EQ(set.sh.size(), set.size() * 16);

@@ -41,10 +41,11 @@ ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double
     return o;
 }
 
-RunResult runLucent(const std::string& args) {
+RunResult runLucent(const std::string& args, const std::string& environment) {
     ScratchDir scratch;
     const auto errFile = scratch.path() / "stderr.txt";
-    const std::string command = std::string(LUCENT_BINARY) + " " + args + " > /dev/null 2> " + errFile.string();
+    const std::string command =
+        environment + " " + std::string(LUCENT_BINARY) + " " + args + " > /dev/null 2> " + errFile.string();
     const int status = std::system(command.c_str());
     std::ifstream in(errFile);
     std::stringstream text;

@@ -34,7 +34,7 @@ struct RunResult {
     int exitCode;
     std::string stderrText;
 };
-RunResult runLucent(const std::string& args);
+RunResult runLucent(const std::string& args, const std::string& environment = "");
 
 // Parses a CSV file, skipping lines starting with '#' and the header line.
 std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file);

@@ -1,0 +1,50 @@
+#include "core/image_compare.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace lucent {
+
+ImageError compareImages(const Image& test, const Image& reference, int margin) {
+    if (test.width != reference.width || test.height != reference.height)
+        throw Error("images differ in size: " + std::to_string(test.width) + "x" + std::to_string(test.height) +
+                    " against " + std::to_string(reference.width) + "x" + std::to_string(reference.height));
+    float peak = 0.0f;
+    for (const auto& p : reference.pixels) peak = std::max({peak, p.r, p.g, p.b});
+    const float threshold = 1e-3f * peak;
+    auto inMask = [&](int x, int y) {
+        if (x < 0 || y < 0 || x >= reference.width || y >= reference.height) return false;
+        const auto& p = reference.at(x, y);
+        return p.r > threshold && p.g > threshold && p.b > threshold;
+    };
+    double squared = 0.0, relative = 0.0, sumTest = 0.0, sumReference = 0.0;
+    size_t n = 0;
+    for (int y = 0; y < reference.height; ++y)
+        for (int x = 0; x < reference.width; ++x) {
+            if (!inMask(x, y)) continue;
+            bool interior = true;
+            for (int dy = -margin; dy <= margin && interior; ++dy)
+                for (int dx = -margin; dx <= margin && interior; ++dx) interior = inMask(x + dx, y + dy);
+            if (!interior) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double t = test.at(x, y)[c], r = reference.at(x, y)[c];
+                squared += (t - r) * (t - r);
+                relative += std::abs(t - r) / r;
+                sumTest += t;
+                sumReference += r;
+            }
+            ++n;
+        }
+    ImageError e;
+    e.pixels = n;
+    if (n == 0) return e;
+    const double mean = sumReference / (3.0 * n);
+    e.relativeRmse = std::sqrt(squared / (3.0 * n)) / mean;
+    e.meanAbsoluteRelativeError = relative / (3.0 * n);
+    e.meanRatio = sumTest / sumReference;
+    return e;
+}
+
+}  // namespace lucent

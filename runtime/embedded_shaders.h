@@ -1,0 +1,12 @@
+#pragma once
+// GLSL sources from shaders/, embedded at build time (cmake/EmbedShaders.cmake).
+namespace lucent::shaders {
+extern const char* const mesh_vert;
+extern const char* const surface_frag;
+extern const char* const depth_only_frag;
+extern const char* const scatter_vert;
+extern const char* const scatter_geom;
+extern const char* const scatter_frag;
+extern const char* const fullscreen_vert;
+extern const char* const copy_depth_frag;
+}  // namespace lucent::shaders

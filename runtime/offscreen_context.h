@@ -1,0 +1,28 @@
+#pragma once
+// An OpenGL 4.5 core context with no window: OSMesa or EGL (surfaceless, on Mesa's
+// llvmpipe here). Creating one makes it current and loads GL through glad; the
+// caller renders into its own framebuffer objects.
+#include <memory>
+#include <string>
+
+namespace lucent {
+
+enum class GlBackend { Auto, OSMesa, Egl };
+
+GlBackend parseGlBackend(const std::string& name);  // "osmesa", "egl" or "" (auto)
+
+class OffscreenContext {
+public:
+    virtual ~OffscreenContext() = default;
+    virtual const char* backendName() const = 0;
+    // Throws Error("no usable OpenGL context: <backend>: <why>"). Auto tries EGL, then OSMesa.
+    static std::unique_ptr<OffscreenContext> create(GlBackend backend);
+};
+
+std::unique_ptr<OffscreenContext> createOsmesaContext();
+std::unique_ptr<OffscreenContext> createEglContext();
+
+// After a context is current: load GL 4.5 core through proc, or throw.
+void loadGl(const char* backend, void* (*proc)(const char*));
+
+}  // namespace lucent

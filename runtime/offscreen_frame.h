@@ -1,0 +1,24 @@
+#pragma once
+// A float colour target with a depth texture, read back as a linear Image.
+#include "core/image.h"
+#include "runtime/gl.h"
+
+namespace lucent {
+
+class OffscreenFrame {
+public:
+    OffscreenFrame(int width, int height);
+    ~OffscreenFrame();
+    OffscreenFrame(const OffscreenFrame&) = delete;
+    OffscreenFrame& operator=(const OffscreenFrame&) = delete;
+
+    void bindAndClear() const;  // colour to 0, depth to 1
+    GLuint depthTexture() const { return depth_; }
+    Image read() const;         // row 0 at the top; non-finite and negative values as 0
+
+private:
+    int width_, height_;
+    GLuint framebuffer_ = 0, colour_ = 0, depth_ = 0;
+};
+
+}  // namespace lucent

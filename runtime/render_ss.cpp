@@ -1,0 +1,40 @@
+#include "runtime/render_ss.h"
+
+#include "core/error.h"
+#include "core/sample_set.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/scattering_renderer.h"
+
+namespace lucent {
+
+Image renderSingleScattering(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
+                             const SsSettings& settings, std::string* backendUsed) {
+    std::vector<SampleSet> sampleSets;
+    Bounds3 bounds;
+    for (const VolumeObject& o : objects) {
+        SampleSet s = readSampleFile(o.desc().samples);
+        if (s.sceneFingerprint != o.desc().fingerprint)
+            throw Error(o.desc().samples.string(), "sample file was made for a different mesh or medium than object '" +
+                                                       o.desc().name + "'; run lucent preprocess again");
+        sampleSets.push_back(std::move(s));
+        bounds.extend(o.mesh().bounds().min);
+        bounds.extend(o.mesh().bounds().max);
+    }
+    const auto context = OffscreenContext::create(settings.backend);
+    if (backendUsed) *backendUsed = context->backendName();
+    const ViewSetup view = viewSetupFor(scene.camera, bounds);
+    OffscreenFrame frame(view.width, view.height);
+    ScatteringRenderer renderer(settings.cutoff);
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const ObjectDesc& d = objects[i].desc();
+        renderer.addObject({&objects[i].mesh(), &sampleSets[i], d.medium.g, d.surface});
+    }
+    renderer.setLights(scene.lights);
+    frame.bindAndClear();
+    DrawOptions options;
+    options.surface = settings.surface;
+    renderer.draw(view, options);
+    return frame.read();
+}
+
+}  // namespace lucent

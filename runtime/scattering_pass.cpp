@@ -1,0 +1,40 @@
+#include "runtime/scattering_pass.h"
+
+#include <vector>
+
+#include "core/error.h"
+#include "runtime/sample_weights.h"
+
+namespace lucent {
+
+GpuSamples::GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, double cutoffSigmas)
+    : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)) {
+    if (samples.shOrder > 8) throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most 8");
+    const std::vector<float> weights = partitionOfUnityWeights(samples, boundary, cutoffSigmas);
+    std::vector<glm::vec4> packed(2 * count_);
+    for (size_t i = 0; i < count_; ++i) {
+        packed[2 * i] = glm::vec4(samples.positions[i], samples.widths[i]);
+        packed[2 * i + 1] = glm::vec4(samples.scattering[i] * weights[i], 0.0f);
+    }
+    glCreateVertexArrays(1, &vao_);
+    glCreateBuffers(2, buffers_);
+    glNamedBufferStorage(buffers_[0], GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
+                         packed.empty() ? nullptr : packed.data(), 0);
+    glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(samples.sh.size(), 1) * sizeof(float)),
+                         samples.sh.empty() ? nullptr : samples.sh.data(), 0);
+}
+
+GpuSamples::~GpuSamples() {
+    glDeleteBuffers(2, buffers_);
+    glDeleteVertexArrays(1, &vao_);
+}
+
+void GpuSamples::draw() const {
+    if (count_ == 0) return;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers_[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers_[1]);
+    glBindVertexArray(vao_);
+    glDrawArrays(GL_POINTS, 0, GLsizei(count_));
+}
+
+}  // namespace lucent

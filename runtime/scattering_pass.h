@@ -1,0 +1,29 @@
+#pragma once
+// A sample set on the GPU: centres, widths, weighted scattering coefficients and
+// SH coefficients in shader storage buffers, one point per sample.
+#include "core/sample_set.h"
+#include "core/triangle_mesh.h"
+#include "runtime/gl.h"
+
+namespace lucent {
+
+class GpuSamples {
+public:
+    GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, double cutoffSigmas);
+    ~GpuSamples();
+    GpuSamples(const GpuSamples&) = delete;
+    GpuSamples& operator=(const GpuSamples&) = delete;
+
+    // Binds the sample (0) and coefficient (2) buffers and draws one point per sample.
+    void draw() const;
+    int shOrder() const { return shOrder_; }
+    int channels() const { return channels_; }
+    size_t size() const { return count_; }
+
+private:
+    GLuint vao_ = 0, buffers_[2] = {0, 0};
+    size_t count_ = 0;
+    int shOrder_ = 0, channels_ = 1;
+};
+
+}  // namespace lucent

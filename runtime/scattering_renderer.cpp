@@ -1,0 +1,239 @@
+#include "runtime/scattering_renderer.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "runtime/embedded_shaders.h"
+#include "runtime/gl_program.h"
+#include "runtime/mesh_pass.h"
+#include "runtime/scattering_pass.h"
+
+namespace lucent {
+
+ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds) {
+    ViewSetup v;
+    v.width = camera.width;
+    v.height = camera.height;
+    v.cameraPosition = glm::vec3(camera.position);
+    v.view = glm::lookAt(camera.position, camera.target, camera.up);
+    // Near and far planes hug the scene so that depth keeps its precision.
+    const double radius = 0.5 * sceneBounds.diagonal();
+    const double distance = glm::length(sceneBounds.center() - camera.position);
+    const double farPlane = distance + 2.0 * radius + 1e-6;
+    const double nearPlane = std::max(distance - 2.0 * radius, farPlane * 1e-5);
+    v.projection = glm::perspective(glm::radians(camera.fovYDegrees), double(camera.width) / camera.height,
+                                    nearPlane, farPlane);
+    return v;
+}
+
+namespace {
+
+// A depth-only framebuffer whose depth texture the passes sample.
+struct DepthTarget {
+    GLuint framebuffer = 0, texture = 0;
+    int width = 0, height = 0;
+    void resize(int w, int h) {
+        if (w == width && h == height) return;
+        release();
+        width = w;
+        height = h;
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+        glTextureStorage2D(texture, 1, GL_DEPTH_COMPONENT32F, w, h);
+        glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &framebuffer);
+        glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, texture, 0);
+        glNamedFramebufferDrawBuffer(framebuffer, GL_NONE);
+        if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error("OpenGL: depth framebuffer is incomplete");
+    }
+    void clear(float depth) const { glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &depth); }
+    void release() {
+        if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
+        if (texture) glDeleteTextures(1, &texture);
+        framebuffer = texture = 0;
+        width = height = 0;
+    }
+};
+
+struct Object {
+    std::unique_ptr<GpuMesh> mesh;
+    std::unique_ptr<GpuSamples> samples;
+    double g;
+    std::optional<SurfaceDesc> surface;
+};
+
+}  // namespace
+
+struct ScatteringRenderer::Impl {
+    double cutoffSigmas;
+    GlProgram depthProgram{{GL_VERTEX_SHADER, "shaders/mesh.vert", shaders::mesh_vert},
+                           {GL_FRAGMENT_SHADER, "shaders/depth_only.frag", shaders::depth_only_frag}};
+    GlProgram surfaceProgram{{GL_VERTEX_SHADER, "shaders/mesh.vert", shaders::mesh_vert},
+                             {GL_FRAGMENT_SHADER, "shaders/surface.frag", shaders::surface_frag}};
+    GlProgram scatterProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", shaders::scatter_vert},
+                             {GL_GEOMETRY_SHADER, "shaders/scatter.geom", shaders::scatter_geom},
+                             {GL_FRAGMENT_SHADER, "shaders/scatter.frag", shaders::scatter_frag}};
+    GlProgram copyDepthProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
+                               {GL_FRAGMENT_SHADER, "shaders/copy_depth.frag", shaders::copy_depth_frag}};
+    std::vector<Object> objects;
+    GLuint lightBuffer = 0;
+    int lightCount = 0;
+    DepthTarget front, back, host;
+    GLuint emptyVao = 0;
+
+    explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
+        glCreateVertexArrays(1, &emptyVao);
+    }
+    ~Impl() {
+        front.release();
+        back.release();
+        host.release();
+        if (lightBuffer) glDeleteBuffers(1, &lightBuffer);
+        glDeleteVertexArrays(1, &emptyVao);
+    }
+
+    void drawMeshes() const {
+        for (const Object& o : objects) o.mesh->draw();
+    }
+};
+
+ScatteringRenderer::ScatteringRenderer(double cutoff) {
+    if (!(cutoff > 0.0 && cutoff < 1.0)) throw Error("Gaussian cut-off must lie in (0, 1)");
+    impl_ = std::make_unique<Impl>(cutoff);
+}
+
+ScatteringRenderer::~ScatteringRenderer() = default;
+
+void ScatteringRenderer::addObject(const TranslucentObject& object) {
+    impl_->objects.push_back({std::make_unique<GpuMesh>(*object.mesh),
+                              std::make_unique<GpuSamples>(*object.samples, *object.mesh, impl_->cutoffSigmas), object.g,
+                              object.surface});
+}
+
+size_t ScatteringRenderer::sampleCount() const {
+    size_t n = 0;
+    for (const Object& o : impl_->objects) n += o.samples->size();
+    return n;
+}
+
+void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
+    std::vector<glm::vec4> packed;
+    for (const Light& l : lights) {
+        if (l.type == Light::Type::Point) packed.emplace_back(glm::vec3(l.position), 1.0f);
+        else packed.emplace_back(glm::vec3(l.direction), 0.0f);
+        packed.emplace_back(glm::vec3(l.power), 0.0f);
+    }
+    if (impl_->lightBuffer) glDeleteBuffers(1, &impl_->lightBuffer);
+    glCreateBuffers(1, &impl_->lightBuffer);
+    glNamedBufferStorage(impl_->lightBuffer, GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
+                         packed.empty() ? nullptr : packed.data(), 0);
+    impl_->lightCount = int(lights.size());
+}
+
+void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {
+    Impl& r = *impl_;
+    GLint target = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+    const glm::mat4 viewProjection = view.projection * view.view;
+    r.front.resize(view.width, view.height);
+    r.back.resize(view.width, view.height);
+    r.host.resize(view.width, view.height);
+    glViewport(0, 0, view.width, view.height);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+
+    // The host's depth, copied so that no pass samples a texture it draws into.
+    r.host.clear(1.0f);
+    if (options.hostDepthTexture) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.host.framebuffer);
+        glDepthFunc(GL_ALWAYS);
+        glUseProgram(r.copyDepthProgram.id());
+        glBindTextureUnit(0, options.hostDepthTexture);
+        glUniform1i(r.copyDepthProgram.uniform("source"), 0);
+        glBindVertexArray(r.emptyVao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    // Where each pixel's ray enters the objects (nearest front face) and finally
+    // leaves them (farthest back face).
+    glEnable(GL_CULL_FACE);
+    glUseProgram(r.depthProgram.id());
+    glUniformMatrix4fv(r.depthProgram.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    r.front.clear(1.0f);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.front.framebuffer);
+    glCullFace(GL_BACK);
+    glDepthFunc(GL_LESS);
+    r.drawMeshes();
+    r.back.clear(0.0f);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.back.framebuffer);
+    glCullFace(GL_FRONT);
+    glDepthFunc(GL_GREATER);
+    r.drawMeshes();
+    glCullFace(GL_BACK);
+    glDepthFunc(GL_LESS);
+
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.lightBuffer);
+
+    // Pass 1: reflected surface, tested against the host's depth, writing none.
+    if (options.surface) {
+        glUseProgram(r.surfaceProgram.id());
+        const GlProgram& p = r.surfaceProgram;
+        glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniform1i(p.uniform("lightCount"), r.lightCount);
+        glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+        glBindTextureUnit(0, r.front.texture);
+        glUniform1i(p.uniform("frontDepth"), 0);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        for (const Object& o : r.objects) {
+            if (!o.surface) continue;
+            glUniform3fv(p.uniform("diffuse"), 1, glm::value_ptr(glm::vec3(o.surface->diffuse)));
+            glUniform3fv(p.uniform("specular"), 1, glm::value_ptr(glm::vec3(o.surface->specular)));
+            glUniform1f(p.uniform("shininess"), float(o.surface->shininess));
+            o.mesh->draw();
+        }
+    }
+
+    // Pass 2: every sample's Gaussian, integrated along each pixel's ray, summed.
+    if (options.scattering) {
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        const GlProgram& p = r.scatterProgram;
+        glUseProgram(p.id());
+        const glm::mat4 inverseProjection = glm::inverse(view.projection);
+        glUniformMatrix4fv(p.uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
+        glUniformMatrix4fv(p.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
+        glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
+        glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+        glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
+        glUniform1i(p.uniform("lightCount"), r.lightCount);
+        glUniform1f(p.uniform("cutoffSigmas"), float(r.cutoffSigmas));
+        glBindTextureUnit(0, r.front.texture);
+        glBindTextureUnit(1, r.back.texture);
+        glBindTextureUnit(2, r.host.texture);
+        glUniform1i(p.uniform("frontDepth"), 0);
+        glUniform1i(p.uniform("backDepth"), 1);
+        glUniform1i(p.uniform("hostDepth"), 2);
+        for (const Object& o : r.objects) {
+            glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
+            glUniform1i(p.uniform("channels"), o.samples->channels());
+            glUniform1f(p.uniform("g"), float(o.g));
+            o.samples->draw();
+        }
+    }
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
+}
+
+}  // namespace lucent

@@ -1,0 +1,64 @@
+#pragma once
+// Lucent's runtime as a library (thesis 3.4). A host that draws its own frame
+// with OpenGL 4.5 creates a ScatteringRenderer on its current context, gives it
+// the translucent objects (mesh + sample set) and the lights, and calls draw()
+// with its framebuffer bound: the renderer adds the objects' reflected surfaces
+// and the light they scatter, occluded by the host's depth.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/sample_set.h"
+#include "core/scene.h"
+#include "core/triangle_mesh.h"
+#include "runtime/gl.h"
+
+namespace lucent {
+
+struct TranslucentObject {
+    const TriangleMesh* mesh;            // boundary, drawn for the surface and the depth passes
+    const SampleSet* samples;            // from lucent preprocess
+    double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
+    std::optional<SurfaceDesc> surface;  // reflected surface term, if any
+};
+
+struct ViewSetup {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::vec3 cameraPosition{0.0f};
+    int width = 0, height = 0;
+};
+
+// A view and projection matching core's CameraRays for the same camera.
+ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds);
+
+struct DrawOptions {
+    bool surface = true;
+    bool scattering = true;
+    GLuint hostDepthTexture = 0;  // the host's depth (0: nothing occludes)
+};
+
+class ScatteringRenderer {
+public:
+    // cutoff: a Gaussian is drawn where it exceeds this fraction of its peak.
+    explicit ScatteringRenderer(double cutoff = 1e-4);
+    ~ScatteringRenderer();
+    ScatteringRenderer(const ScatteringRenderer&) = delete;
+    ScatteringRenderer& operator=(const ScatteringRenderer&) = delete;
+
+    void addObject(const TranslucentObject& object);
+    void setLights(const std::vector<Light>& lights);
+    size_t sampleCount() const;
+
+    // Draws into the framebuffer bound to GL_DRAW_FRAMEBUFFER (a float colour
+    // attachment keeps the radiance linear), within view.width x view.height.
+    void draw(const ViewSetup& view, const DrawOptions& options = {});
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lucent
