@@ -1,0 +1,29 @@
+# Install rules and the CMake package, so that a host project can write
+#   find_package(Lucent REQUIRED)
+#   target_link_libraries(app PRIVATE Lucent::offscreen)   # or Lucent::runtime on its own context
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(LUCENT_INSTALL_INCLUDE ${CMAKE_INSTALL_INCLUDEDIR}/lucent)
+set_target_properties(lucent_core PROPERTIES EXPORT_NAME core)
+set_target_properties(lucent_glad PROPERTIES EXPORT_NAME glad)
+set_target_properties(lucent_runtime PROPERTIES EXPORT_NAME runtime)
+set_target_properties(lucent_offscreen PROPERTIES EXPORT_NAME offscreen)
+
+install(TARGETS lucent_core lucent_glad lucent_runtime lucent_offscreen
+        EXPORT LucentTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${LUCENT_INSTALL_INCLUDE})
+install(TARGETS lucent RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY core/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/core FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY runtime/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/runtime FILES_MATCHING PATTERN "*.h")
+install(DIRECTORY ${CMAKE_BINARY_DIR}/runtime/glad/include/ DESTINATION ${LUCENT_INSTALL_INCLUDE})
+install(EXPORT LucentTargets NAMESPACE Lucent:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/LucentConfig.cmake.in
+                              ${CMAKE_BINARY_DIR}/LucentConfig.cmake
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/LucentConfigVersion.cmake COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/LucentConfig.cmake ${CMAKE_BINARY_DIR}/LucentConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
