@@ -12,6 +12,7 @@ using Command = std::function<void()>;
 Command addPreprocessCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addInfoCommand(CLI::App& app);
+Command addViewCommand(CLI::App& app);
 
 // Prints "lucent: warning: ..." lines.
 void printWarnings(const std::vector<std::string>& warnings);

@@ -9,4 +9,5 @@ extern const char* const scatter_geom;
 extern const char* const scatter_frag;
 extern const char* const fullscreen_vert;
 extern const char* const copy_depth_frag;
+extern const char* const tonemap_frag;
 }  // namespace lucent::shaders

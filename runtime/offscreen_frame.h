@@ -14,6 +14,7 @@ public:
 
     void bindAndClear() const;  // colour to 0, depth to 1
     GLuint depthTexture() const { return depth_; }
+    GLuint colourTexture() const { return colour_; }
     Image read() const;         // row 0 at the top; non-finite and negative values as 0
 
 private:

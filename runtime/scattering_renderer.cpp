@@ -87,6 +87,16 @@ struct ScatteringRenderer::Impl {
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
         glCreateVertexArrays(1, &emptyVao);
+        // sqrt(2) K_lm (K_l0 for m = 0), so the shader needs no factorials.
+        float normalisation[64];
+        for (int l = 0; l < 8; ++l)
+            for (int m = 0; m <= l; ++m) {
+                double ratio = 1.0;  // (l-m)! / (l+m)!
+                for (int j = l - m + 1; j <= l + m; ++j) ratio /= double(j);
+                const double k = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio);
+                normalisation[l * l + l + m] = float(m == 0 ? k : std::sqrt(2.0) * k);
+            }
+        glProgramUniform1fv(scatterProgram.id(), scatterProgram.uniform("shNormalisation"), 64, normalisation);
     }
     ~Impl() {
         front.release();
@@ -218,6 +228,8 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
         glUniform1i(p.uniform("lightCount"), r.lightCount);
         glUniform1f(p.uniform("cutoffSigmas"), float(r.cutoffSigmas));
+        glUniform1f(p.uniform("discardBelow"), options.discardBelow);
+        glUniform1f(p.uniform("extinctionScale"), options.extinctionScale);
         glBindTextureUnit(0, r.front.texture);
         glBindTextureUnit(1, r.back.texture);
         glBindTextureUnit(2, r.host.texture);

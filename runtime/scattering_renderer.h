@@ -38,6 +38,12 @@ struct DrawOptions {
     bool surface = true;
     bool scattering = true;
     GLuint hostDepthTexture = 0;  // the host's depth (0: nothing occludes)
+    // Scales every medium's sigma_t and sigma_s at constant albedo. Exact up to the
+    // SH truncation: the stored attenuation exp(-tau) becomes exp(-k tau) = psi^k.
+    float extinctionScale = 1.0f;
+    // Diagnostics: discard scattering fragments whose Gaussian line integral is
+    // below this fraction of its largest possible value (0: keep all).
+    float discardBelow = 0.0f;
 };
 
 class ScatteringRenderer {

@@ -13,6 +13,7 @@ uniform sampler2D backDepth;
 uniform sampler2D hostDepth;
 uniform mat4 inverseProjection;
 uniform vec2 viewportSize;
+uniform float discardBelow;  // diagnostics only (render benchmark): 0 in normal use
 
 out vec4 colour;
 
@@ -57,5 +58,7 @@ void main() {
     float k = 1.0 / (sqrt(2.0) * s);
     // int_t0^t1 exp(-|o + t dir - c|^2 / (2 s^2)) dt
     float integral = s * sqrt(0.5 * 3.14159265358979) * exp(-0.5 * h2 / (s * s)) * erfDifference((t0 - tc) * k, (t1 - tc) * k);
+    // The largest line integral of this Gaussian is s sqrt(2 pi).
+    if (integral < discardBelow * s * sqrt(2.0 * 3.14159265358979)) discard;
     colour = vec4(f.radiance * max(integral, 0.0), 1.0);
 }

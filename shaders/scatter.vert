@@ -19,6 +19,7 @@ uniform int lightCount;
 uniform int shOrder;   // bands, at most 8
 uniform int channels;  // 1 (grey sigma_t) or 3
 uniform float g;       // Henyey-Greenstein mean cosine
+uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi becomes psi^k
 uniform vec3 cameraPosition;
 uniform mat4 view;
 
@@ -29,10 +30,15 @@ out VertexOut {
 } v;
 
 const float PI = 3.14159265358979;
-const int MAX_COEFFICIENTS = 64;
+uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
-// Real SH with the Condon-Shortley phase, as core/spherical_harmonics.cpp.
-void evaluateSh(vec3 d, out float basis[MAX_COEFFICIENTS]) {
+// psi_i(d) per channel, clamped to the range a transmittance can take: the SH
+// expansion (real SH with the Condon-Shortley phase, as core/spherical_harmonics.cpp)
+// summed on the fly, without storing the basis.
+vec3 attenuation(int sampleIndex, vec3 d) {
+    int n = shOrder * shOrder;
+    int base = sampleIndex * channels * n;
+    vec3 psi = vec3(0.0);
     float cm = 1.0, sm = 0.0, qmm = 1.0;
     for (int m = 0; m < shOrder; ++m) {
         float q2 = 0.0, q1 = qmm;
@@ -42,14 +48,21 @@ void evaluateSh(vec3 d, out float basis[MAX_COEFFICIENTS]) {
             else if (l == m + 1) q = d.z * (2.0 * m + 1.0) * qmm;
             else q = ((2.0 * l - 1.0) * d.z * q1 - (l + m - 1.0) * q2) / float(l - m);
             if (l > m) { q2 = q1; q1 = q; }
-            float ratio = 1.0;  // (l-m)! / (l+m)!
-            for (int k = l - m + 1; k <= l + m; ++k) ratio /= float(k);
-            float k = sqrt((2.0 * l + 1.0) / (4.0 * PI) * ratio);
+            float kq = shNormalisation[l * l + l + m] * q;
+            int plus = base + l * l + l + m, minus = base + l * l + l - m;
             if (m == 0) {
-                basis[l * l + l] = k * q;
+                psi.r += sh[plus] * kq;
+                if (channels == 3) {
+                    psi.g += sh[plus + n] * kq;
+                    psi.b += sh[plus + 2 * n] * kq;
+                }
             } else {
-                basis[l * l + l + m] = sqrt(2.0) * k * q * cm;
-                basis[l * l + l - m] = sqrt(2.0) * k * q * sm;
+                float c = kq * cm, s = kq * sm;
+                psi.r += sh[plus] * c + sh[minus] * s;
+                if (channels == 3) {
+                    psi.g += sh[plus + n] * c + sh[minus + n] * s;
+                    psi.b += sh[plus + 2 * n] * c + sh[minus + 2 * n] * s;
+                }
             }
         }
         float c = cm * d.x - sm * d.y, s = cm * d.y + sm * d.x;
@@ -57,22 +70,9 @@ void evaluateSh(vec3 d, out float basis[MAX_COEFFICIENTS]) {
         sm = s;
         qmm *= -(2.0 * m + 1.0);
     }
-}
-
-// psi_i(d) per channel, clamped to the range a transmittance can take.
-vec3 attenuation(int sampleIndex, vec3 d) {
-    float basis[MAX_COEFFICIENTS];
-    evaluateSh(d, basis);
-    int n = shOrder * shOrder;
-    vec3 psi = vec3(0.0);
-    for (int c = 0; c < channels; ++c) {
-        int base = (sampleIndex * channels + c) * n;
-        float sum = 0.0;
-        for (int k = 0; k < n; ++k) sum += sh[base + k] * basis[k];
-        psi[c] = sum;
-    }
     if (channels == 1) psi = vec3(psi.r);
-    return clamp(psi, 0.0, 1.0);
+    psi = clamp(psi, 0.0, 1.0);
+    return extinctionScale == 1.0 ? psi : pow(psi, vec3(extinctionScale));
 }
 
 float henyeyGreenstein(float cosTheta) {
@@ -101,7 +101,7 @@ void main() {
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
         received += henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * attenuation(i, toLight);
     }
-    v.radiance = samples[i].scattering.rgb * received * attenuation(i, toCamera);
+    v.radiance = extinctionScale * samples[i].scattering.rgb * received * attenuation(i, toCamera);
     v.viewCentre = (view * vec4(centre, 1.0)).xyz;
     v.width = samples[i].centreWidth.w;
 }

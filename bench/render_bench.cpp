@@ -1,0 +1,138 @@
+// Render benchmark (thesis Tables 3.2 and 3.3): median frame time after warm-up
+// of --method ss at 800x800 on Mesa's llvmpipe, against the sample count and the
+// number of lights, and how many of the fragments the proxies generate carry a
+// Gaussian above the cut-off.
+//
+//   build/bin/lucent-bench-render [SCENE] [--frames N] [--warmup N]
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+#include "preprocess/preprocessor.h"
+#include "runtime/offscreen_context.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/scattering_renderer.h"
+
+using namespace lucent;
+
+namespace {
+
+constexpr GLenum kFragmentShaderInvocations = 0x82F4;  // ARB_pipeline_statistics_query
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// Lights on a small ring in front of the object and above it: they light the same
+// samples, so the sweep isolates the per-light cost from how much of the object is lit.
+std::vector<Light> lightsAround(int count, const Bounds3& bounds) {
+    std::vector<Light> lights;
+    const double radius = 2.0 * bounds.diagonal();
+    for (int j = 0; j < count; ++j) {
+        Light l;
+        const double a = 2.0 * kPi * j / count;
+        l.position = bounds.center() + radius * Vec3(0.2 * std::cos(a), 0.8, 1.0 + 0.2 * std::sin(a));
+        l.power = Rgb(1.0, 0.9, 0.8) * (4.0 * radius * radius / count);
+        lights.push_back(l);
+    }
+    return lights;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Lucent render benchmark (thesis Tables 3.2 and 3.3)"};
+    std::string sceneFile = std::string(LUCENT_SOURCE_DIR) + "/models/bunny.json";
+    int frames = 15, warmup = 3, size = 800;
+    std::string backendName;
+    app.add_option("scene", sceneFile, "Scene whose first object is rendered");
+    app.add_option("--frames", frames, "Timed frames per setting (median reported)");
+    app.add_option("--warmup", warmup, "Untimed frames first");
+    app.add_option("--size", size, "Viewport width and height");
+    app.add_option("--backend", backendName, "osmesa or egl");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        SceneDesc scene = parseScene(sceneFile);
+        scene.camera.width = scene.camera.height = size;
+        std::vector<std::string> warnings;
+        const VolumeObject object(scene.objects.front(), warnings);
+        const Bounds3 bounds = object.mesh().bounds();
+        const auto context = OffscreenContext::create(parseGlBackend(backendName));
+        const ViewSetup view = viewSetupFor(scene.camera, bounds);
+        OffscreenFrame frame(size, size);
+        std::printf("scene %s, %dx%d, %s (%s), median of %d frames after %d warm-up\n\n", sceneFile.c_str(), size,
+                    size, context->backendName(), reinterpret_cast<const char*>(glGetString(GL_RENDERER)), frames,
+                    warmup);
+
+        auto measure = [&](const SampleSet& samples, int lights, double* usefulFraction) {
+            ScatteringRenderer renderer;
+            renderer.addObject({&object.mesh(), &samples, scene.objects.front().medium.g, std::nullopt});
+            renderer.setLights(lightsAround(lights, bounds));
+            std::vector<double> times;
+            for (int f = 0; f < warmup + frames; ++f) {
+                frame.bindAndClear();
+                glFinish();
+                const auto start = std::chrono::steady_clock::now();
+                renderer.draw(view);
+                glFinish();
+                if (f >= warmup) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            }
+            if (usefulFraction) {
+                // Fragments the proxies generate against those whose Gaussian is above the cut-off.
+                GLuint queries[2];
+                glGenQueries(2, queries);
+                DrawOptions options;
+                options.surface = false;
+                frame.bindAndClear();
+                glBeginQuery(kFragmentShaderInvocations, queries[0]);
+                renderer.draw(view, options);
+                glEndQuery(kFragmentShaderInvocations);
+                options.discardBelow = 1e-4f;
+                frame.bindAndClear();
+                glBeginQuery(GL_SAMPLES_PASSED, queries[1]);
+                renderer.draw(view, options);
+                glEndQuery(GL_SAMPLES_PASSED);
+                GLuint64 invocations = 0, useful = 0;
+                glGetQueryObjectui64v(queries[0], GL_QUERY_RESULT, &invocations);
+                glGetQueryObjectui64v(queries[1], GL_QUERY_RESULT, &useful);
+                glDeleteQueries(2, queries);
+                *usefulFraction = invocations ? double(useful) / double(invocations) : 0.0;
+            }
+            return median(times);
+        };
+        auto samplesFor = [&](int count) {
+            PreprocessSettings s;
+            s.samples = count;
+            std::fprintf(stderr, "preprocessing %d samples...\n", count);
+            return preprocessObject(object, s);
+        };
+
+        std::printf("| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n");
+        for (int count : {25000, 50000, 100000}) {
+            const SampleSet samples = samplesFor(count);
+            double useful = 0.0;
+            const double t = measure(samples, 1, &useful);
+            std::printf("| %zu | %.1f | %.1f | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t, 100.0 * useful);
+            std::fflush(stdout);
+        }
+        const SampleSet samples = samplesFor(58000);
+        std::printf("\n%zu samples:\n\n| lights | frame (ms) | fps | vs 1 light |\n|---:|---:|---:|---:|\n", samples.size());
+        double one = 0.0;
+        for (int lights : {1, 2, 4, 8, 16}) {
+            const double t = measure(samples, lights, nullptr);
+            if (lights == 1) one = t;
+            std::printf("| %d | %.1f | %.1f | %+.1f%% |\n", lights, 1e3 * t, 1.0 / t, 100.0 * (t / one - 1.0));
+            std::fflush(stdout);
+        }
+    } catch (const Error& e) {
+        std::fprintf(stderr, "lucent-bench-render: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,62 @@
+// The viewer for real: a GLFW window under Xvfb, driven by a script that moves
+// the light from the right of the sphere to its left between two screenshots.
+#include <gtest/gtest.h>
+
+#include "core/image.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+// Mean green radiance of the lit pixels in the left or right half.
+double meanHalf(const Image& image, bool left) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = left ? 0 : image.width / 2; x < (left ? image.width / 2 : image.width); ++x) {
+            sum += image.at(x, y).g;
+            ++n;
+        }
+    return sum / double(n);
+}
+
+TEST(Viewer, ScriptedLightMoveChangesTheScreenshotWhereItShould) {
+    test::ScratchDir dir;
+    const auto scene = dir.write("scene.json", R"({
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 96, "height": 96},
+      "lights": [{"type": "point", "position": [3, 0, 2], "intensity": [40, 40, 40]}],
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+                   "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto before = dir.path() / "before.pfm", after = dir.path() / "after.pfm";
+    const auto script = dir.write("moves.txt", "screenshot " + before.string() +
+                                                   "\nlight 0 position -3 0 2  # to the other side\n"
+                                                   "orbit 0 0\nscreenshot " + after.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const Image a = readPfm(before), b = readPfm(after);
+    ASSERT_EQ(a.width, 96);
+    // Lit from the right first, then from the left.
+    EXPECT_GT(meanHalf(a, false), 1.5 * meanHalf(a, true));
+    EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(b, false));
+    EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(a, true));
+}
+
+TEST(Viewer, BadScriptLineIsOneClearError) {
+    test::ScratchDir dir;
+    const auto scene = dir.write("scene.json", R"({
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 32, "height": 32},
+      "lights": [{"type": "point", "position": [3, 0, 2], "intensity": 4}],
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+                   "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 300").exitCode, 0);
+    const auto script = dir.write("bad.txt", "orbit 10 0\nlight 3 position 0 0 0\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 320x240x24'");
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.stderrText.find("bad.txt:2: no light with that index"), std::string::npos) << run.stderrText;
+}
+
+}  // namespace
+}  // namespace lucent

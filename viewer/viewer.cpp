@@ -1,0 +1,262 @@
+#include "viewer/viewer.h"
+
+#include "runtime/gl.h"  // glad before GLFW, and GLFW without its own GL header
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/sample_set.h"
+#include "core/volume_object.h"
+#include "runtime/embedded_shaders.h"
+#include "runtime/gl_program.h"
+#include "runtime/offscreen_context.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/scattering_renderer.h"
+#include "viewer/viewer_state.h"
+
+namespace lucent {
+namespace {
+
+class GlfwWindow {
+public:
+    GlfwWindow(int width, int height) {
+        glfwSetErrorCallback([](int, const char* text) { lastError() = text; });
+        if (!glfwInit()) throw Error("no usable OpenGL context: glfw: " + lastError() + " (is DISPLAY set?)");
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        window_ = glfwCreateWindow(width, height, "Lucent", nullptr, nullptr);
+        if (!window_) {
+            glfwTerminate();
+            throw Error("no usable OpenGL context: glfw: " + lastError());
+        }
+        glfwMakeContextCurrent(window_);
+        glfwSwapInterval(0);
+        loadGl("glfw", [](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); });
+    }
+    ~GlfwWindow() {
+        glfwDestroyWindow(window_);
+        glfwTerminate();
+    }
+    GLFWwindow* get() const { return window_; }
+
+private:
+    static std::string& lastError() {
+        static std::string text = "unknown error";
+        return text;
+    }
+    GLFWwindow* window_ = nullptr;
+};
+
+std::vector<std::string> readScript(const std::filesystem::path& file) {
+    std::vector<std::string> lines;
+    if (file.empty()) return lines;
+    std::ifstream in(file);
+    if (!in) throw Error(file.string(), "cannot open viewer script");
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+float autoExposure(const Image& image) {
+    std::vector<float> l;
+    for (const auto& p : image.pixels)
+        if (p.g > 0.0f) l.push_back(p.g);
+    if (l.empty()) return 1.0f;
+    std::nth_element(l.begin(), l.begin() + long(0.995 * double(l.size() - 1)), l.end());
+    return 1.0f / l[size_t(0.995 * double(l.size() - 1))];
+}
+
+void lightsPanel(ViewerState& state) {
+    for (size_t i = 0; i < state.lights.size(); ++i) {
+        Light& light = state.lights[i];
+        ImGui::PushID(int(i));
+        const bool point = light.type == Light::Type::Point;
+        ImGui::Text("%s light %zu", point ? "point" : "directional", i);
+        glm::vec3 position(point ? light.position : light.direction);
+        glm::vec3 power(light.power);
+        if (ImGui::DragFloat3(point ? "position" : "direction", glm::value_ptr(position), 0.02f)) {
+            if (point) light.position = Vec3(position);
+            else if (glm::length(position) > 0.0f) light.direction = glm::normalize(Vec3(position));
+            state.lightsChanged = true;
+        }
+        float peak = std::max({power.r, power.g, power.b, 1e-6f});
+        glm::vec3 colour = power / peak;
+        bool changed = ImGui::ColorEdit3("colour", glm::value_ptr(colour));
+        changed |= ImGui::DragFloat(point ? "intensity W/sr" : "irradiance W/m2", &peak, 0.05f * peak, 0.0f, 1e9f);
+        if (changed) {
+            light.power = Rgb(colour * peak);
+            state.lightsChanged = true;
+        }
+        if (ImGui::Button("remove")) {
+            state.lights.erase(state.lights.begin() + long(i));
+            state.lightsChanged = true;
+            ImGui::PopID();
+            break;
+        }
+        ImGui::Separator();
+        ImGui::PopID();
+    }
+    if (ImGui::Button("add point light")) {
+        Light l;
+        l.position = state.camera.camera().position;
+        l.power = Rgb(10.0);
+        state.lights.push_back(l);
+        state.lightsChanged = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("add directional light")) {
+        Light l;
+        l.type = Light::Type::Directional;
+        l.direction = Vec3(0, -1, 0);
+        l.power = Rgb(1.0);
+        state.lights.push_back(l);
+        state.lightsChanged = true;
+    }
+}
+
+}  // namespace
+
+void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    for (const auto& w : warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
+    std::vector<SampleSet> samples;
+    Bounds3 bounds;
+    for (const VolumeObject& o : objects) {
+        samples.push_back(readSampleFile(o.desc().samples));
+        if (samples.back().sceneFingerprint != o.desc().fingerprint)
+            throw Error(o.desc().samples.string(), "sample file was made for a different mesh or medium than object '" +
+                                                       o.desc().name + "'; run lucent preprocess again");
+        bounds.extend(o.mesh().bounds().min);
+        bounds.extend(o.mesh().bounds().max);
+    }
+    const std::vector<std::string> script = readScript(options.script);
+
+    ViewerState state(scene);
+    const int width = options.width ? options.width : scene.camera.width;
+    const int height = options.height ? options.height : scene.camera.height;
+    state.camera.resize(width, height);
+    GlfwWindow window(width, height);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui_ImplGlfw_InitForOpenGL(window.get(), true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+    {
+        ScatteringRenderer renderer;
+        for (size_t i = 0; i < objects.size(); ++i)
+            renderer.addObject({&objects[i].mesh(), &samples[i], objects[i].desc().medium.g, objects[i].desc().surface});
+        std::unique_ptr<OffscreenFrame> frame;
+        int frameWidth = 0, frameHeight = 0;
+        GlProgram tonemap{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
+                          {GL_FRAGMENT_SHADER, "shaders/tonemap.frag", shaders::tonemap_frag}};
+        GLuint emptyVao;
+        glCreateVertexArrays(1, &emptyVao);
+        double frameMs = 0.0;
+        size_t scriptLine = 0;
+        glm::dvec2 lastMouse(0.0);
+
+        while (!glfwWindowShouldClose(window.get()) && !state.quit) {
+            glfwPollEvents();
+            if (scriptLine < script.size()) {
+                applyScriptLine(state, script[scriptLine], options.script.string() + ":" + std::to_string(scriptLine + 1));
+                ++scriptLine;
+            } else if (!options.screenshot.empty()) {
+                state.screenshots.push_back(options.screenshot.string());
+                state.quit = true;
+            }
+
+            // Mouse: left drag orbits, right drag pans, wheel zooms (unless over the panel).
+            glm::dvec2 mouse;
+            glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
+            if (!ImGui::GetIO().WantCaptureMouse) {
+                const glm::dvec2 delta = mouse - lastMouse;
+                if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) state.camera.orbit(-0.3 * delta.x, 0.3 * delta.y);
+                if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state.camera.pan(-1e-3 * delta.x, 1e-3 * delta.y);
+                const float wheel = ImGui::GetIO().MouseWheel;
+                if (wheel != 0.0f) state.camera.zoom(std::pow(0.9, wheel));
+            }
+            lastMouse = mouse;
+
+            int fbWidth, fbHeight;
+            glfwGetFramebufferSize(window.get(), &fbWidth, &fbHeight);
+            if (fbWidth <= 0 || fbHeight <= 0) continue;
+            if (!frame || fbWidth != frameWidth || fbHeight != frameHeight) {
+                frame = std::make_unique<OffscreenFrame>(fbWidth, fbHeight);
+                frameWidth = fbWidth;
+                frameHeight = fbHeight;
+                state.camera.resize(fbWidth, fbHeight);
+            }
+            if (state.lightsChanged) {
+                renderer.setLights(state.lights);
+                state.lightsChanged = false;
+            }
+
+            const auto start = std::chrono::steady_clock::now();
+            frame->bindAndClear();
+            DrawOptions drawOptions;
+            drawOptions.surface = state.surface;
+            drawOptions.scattering = state.scattering;
+            drawOptions.extinctionScale = state.extinctionScale;
+            renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
+            glFinish();
+            frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            if (!(state.exposure > 0.0f)) state.exposure = autoExposure(frame->read());
+
+            for (const std::string& file : state.screenshots) {
+                writeImage(file, frame->read(), state.exposure);
+                std::fprintf(stderr, "lucent: view: saved %s\n", file.c_str());
+            }
+            state.screenshots.clear();
+
+            // Display: tone-mapped frame, then the panel.
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, fbWidth, fbHeight);
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_BLEND);
+            glUseProgram(tonemap.id());
+            glBindTextureUnit(0, frame->colourTexture());
+            glUniform1i(tonemap.uniform("radiance"), 0);
+            glUniform1f(tonemap.uniform("exposure"), state.exposure);
+            glBindVertexArray(emptyVao);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+
+            ImGui_ImplOpenGL3_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+            ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+            ImGui::Begin("Lucent");
+            ImGui::Text("%.1f ms per frame, %zu samples", frameMs, renderer.sampleCount());
+            ImGui::Checkbox("surface", &state.surface);
+            ImGui::SameLine();
+            ImGui::Checkbox("scattering", &state.scattering);
+            ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+            ImGui::SliderFloat("exposure", &state.exposure, 1e-3f, 1e4f, "%.3g", ImGuiSliderFlags_Logarithmic);
+            if (ImGui::Button("save screenshot")) state.screenshots.push_back("lucent-screenshot.png");
+            ImGui::Separator();
+            lightsPanel(state);
+            ImGui::End();
+            ImGui::Render();
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            glfwSwapBuffers(window.get());
+        }
+        glDeleteVertexArrays(1, &emptyVao);
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+}  // namespace lucent

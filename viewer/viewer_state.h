@@ -1,0 +1,27 @@
+#pragma once
+// What the viewer shows and the user (or a script) changes: camera, lights,
+// medium scale, passes, exposure.
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "viewer/orbit_camera.h"
+
+namespace lucent {
+
+struct ViewerState {
+    explicit ViewerState(const SceneDesc& scene) : camera(scene.camera), lights(scene.lights) {}
+    OrbitCamera camera;
+    std::vector<Light> lights;
+    float extinctionScale = 1.0f;
+    bool surface = true, scattering = true;
+    float exposure = 0.0f;  // 0: pick one from the first frame
+    bool lightsChanged = true;
+    bool quit = false;
+    std::vector<std::string> screenshots;  // to save after the next frame
+};
+
+// Applies one script line (see docs/viewer.md); throws Error("SCRIPT:LINE: problem").
+void applyScriptLine(ViewerState& state, const std::string& line, const std::string& where);
+
+}  // namespace lucent
