@@ -10,4 +10,5 @@ extern const char* const scatter_frag;
 extern const char* const fullscreen_vert;
 extern const char* const copy_depth_frag;
 extern const char* const tonemap_frag;
+extern const char* const segment_frag;
 }  // namespace lucent::shaders

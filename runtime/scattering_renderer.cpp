@@ -59,6 +59,32 @@ struct DepthTarget {
     }
 };
 
+// A two-channel float target: the per-pixel ray segment inside the objects.
+struct SegmentTarget {
+    GLuint framebuffer = 0, texture = 0;
+    int width = 0, height = 0;
+    void resize(int w, int h) {
+        if (w == width && h == height) return;
+        release();
+        width = w;
+        height = h;
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+        glTextureStorage2D(texture, 1, GL_RG32F, w, h);
+        glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &framebuffer);
+        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+        if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error("OpenGL: RG32F framebuffer is incomplete");
+    }
+    void release() {
+        if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
+        if (texture) glDeleteTextures(1, &texture);
+        framebuffer = texture = 0;
+        width = height = 0;
+    }
+};
+
 struct Object {
     std::unique_ptr<GpuMesh> mesh;
     std::unique_ptr<GpuSamples> samples;
@@ -79,10 +105,13 @@ struct ScatteringRenderer::Impl {
                              {GL_FRAGMENT_SHADER, "shaders/scatter.frag", shaders::scatter_frag}};
     GlProgram copyDepthProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
                                {GL_FRAGMENT_SHADER, "shaders/copy_depth.frag", shaders::copy_depth_frag}};
+    GlProgram segmentProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
+                             {GL_FRAGMENT_SHADER, "shaders/segment.frag", shaders::segment_frag}};
     std::vector<Object> objects;
     GLuint lightBuffer = 0;
     int lightCount = 0;
     DepthTarget front, back, host;
+    SegmentTarget segments;
     GLuint emptyVao = 0;
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
@@ -102,6 +131,7 @@ struct ScatteringRenderer::Impl {
         front.release();
         back.release();
         host.release();
+        segments.release();
         if (lightBuffer) glDeleteBuffers(1, &lightBuffer);
         glDeleteVertexArrays(1, &emptyVao);
     }
@@ -152,6 +182,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     r.front.resize(view.width, view.height);
     r.back.resize(view.width, view.height);
     r.host.resize(view.width, view.height);
+    r.segments.resize(view.width, view.height);
     glViewport(0, 0, view.width, view.height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -187,6 +218,28 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
 
+    // Each pixel's ray segment inside the objects, once, so that the scattering
+    // fragments read one texel instead of three depths and three unprojections.
+    const glm::mat4 inverseProjection = glm::inverse(view.projection);
+    if (options.scattering) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.segments.framebuffer);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        const GlProgram& p = r.segmentProgram;
+        glUseProgram(p.id());
+        glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
+        glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
+        glBindTextureUnit(0, r.front.texture);
+        glBindTextureUnit(1, r.back.texture);
+        glBindTextureUnit(2, r.host.texture);
+        glUniform1i(p.uniform("frontDepth"), 0);
+        glUniform1i(p.uniform("backDepth"), 1);
+        glUniform1i(p.uniform("hostDepth"), 2);
+        glBindVertexArray(r.emptyVao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEnable(GL_DEPTH_TEST);
+    }
+
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.lightBuffer);
 
@@ -220,22 +273,19 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glBlendFunc(GL_ONE, GL_ONE);
         const GlProgram& p = r.scatterProgram;
         glUseProgram(p.id());
-        const glm::mat4 inverseProjection = glm::inverse(view.projection);
         glUniformMatrix4fv(p.uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
         glUniformMatrix4fv(p.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
-        glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
         glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
-        glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
+        // View-space direction through pixel (x, y) at z = -1 for this projection.
+        const glm::mat4& P = view.projection;
+        glUniform4f(p.uniform("pixelToView"), 2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
+                    (P[2][0] - 1.0f) / P[0][0], (P[2][1] - 1.0f) / P[1][1]);
         glUniform1i(p.uniform("lightCount"), r.lightCount);
         glUniform1f(p.uniform("cutoffSigmas"), float(r.cutoffSigmas));
         glUniform1f(p.uniform("discardBelow"), options.discardBelow);
         glUniform1f(p.uniform("extinctionScale"), options.extinctionScale);
-        glBindTextureUnit(0, r.front.texture);
-        glBindTextureUnit(1, r.back.texture);
-        glBindTextureUnit(2, r.host.texture);
-        glUniform1i(p.uniform("frontDepth"), 0);
-        glUniform1i(p.uniform("backDepth"), 1);
-        glUniform1i(p.uniform("hostDepth"), 2);
+        glBindTextureUnit(0, r.segments.texture);
+        glUniform1i(p.uniform("raySegments"), 0);
         for (const Object& o : r.objects) {
             glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
             glUniform1i(p.uniform("channels"), o.samples->channels());

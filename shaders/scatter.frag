@@ -8,12 +8,9 @@ in GeometryOut {
     flat vec3 radiance;
 } f;
 
-uniform sampler2D frontDepth;
-uniform sampler2D backDepth;
-uniform sampler2D hostDepth;
-uniform mat4 inverseProjection;
-uniform vec2 viewportSize;
-uniform float discardBelow;  // diagnostics only (render benchmark): 0 in normal use
+uniform sampler2D raySegments;  // per pixel [t0, t1] inside the objects (shaders/segment.frag)
+uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
+uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
 
 out vec4 colour;
 
@@ -32,25 +29,11 @@ float erfDifference(float a, float b) {
     return 2.0 - erfcPositive(-a) - erfcPositive(b);
 }
 
-// Distance from the eye to the surface a depth-buffer value describes, along the pixel ray.
-float eyeDistance(float depth, vec2 ndc) {
-    vec4 p = inverseProjection * vec4(ndc, 2.0 * depth - 1.0, 1.0);
-    return length(p.xyz / p.w);
-}
-
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float front = texelFetch(frontDepth, pixel, 0).r;
-    if (front >= 1.0) discard;  // the ray misses the object
-    float back = texelFetch(backDepth, pixel, 0).r;
-    float host = texelFetch(hostDepth, pixel, 0).r;
-    vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
-    vec4 far = inverseProjection * vec4(ndc, 1.0, 1.0);
-    vec3 dir = normalize(far.xyz / far.w);
-    float t0 = eyeDistance(front, ndc);
-    float t1 = eyeDistance(back, ndc);
-    if (host < 1.0) t1 = min(t1, eyeDistance(host, ndc));
-    if (t1 <= t0) discard;
+    vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
+    float t0 = segment.x, t1 = segment.y;
+    if (t1 <= t0) discard;  // the ray misses the object, or the host hides it
+    vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
 
     float s = f.width;
     float tc = dot(dir, f.viewCentre);
