@@ -29,19 +29,16 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-// Lights on a small ring in front of the object and above it: they light the same
-// samples, so the sweep isolates the per-light cost from how much of the object is lit.
+// n lights at one place, each with 1/n of the power: the image, and so the
+// fragment work, stays the same, and the sweep measures what each light costs.
+// (Lights in different places also change which samples are lit at all, and with
+// them the number of fragments; that is the scene's cost, not the light's.)
 std::vector<Light> lightsAround(int count, const Bounds3& bounds) {
-    std::vector<Light> lights;
     const double radius = 2.0 * bounds.diagonal();
-    for (int j = 0; j < count; ++j) {
-        Light l;
-        const double a = 2.0 * kPi * j / count;
-        l.position = bounds.center() + radius * Vec3(0.2 * std::cos(a), 0.8, 1.0 + 0.2 * std::sin(a));
-        l.power = Rgb(1.0, 0.9, 0.8) * (4.0 * radius * radius / count);
-        lights.push_back(l);
-    }
-    return lights;
+    Light l;
+    l.position = bounds.center() + radius * Vec3(0.3, 0.8, 1.0);
+    l.power = Rgb(1.0, 0.9, 0.8) * (4.0 * radius * radius / count);
+    return std::vector<Light>(size_t(count), l);
 }
 
 }  // namespace
@@ -121,14 +118,40 @@ int main(int argc, char** argv) {
             std::printf("| %zu | %.1f | %.1f | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t, 100.0 * useful);
             std::fflush(stdout);
         }
+        // The light sweep interleaves the settings frame by frame, so that a slow
+        // spell of this shared machine lands on every setting alike.
         const SampleSet samples = samplesFor(58000);
-        std::printf("\n%zu samples:\n\n| lights | frame (ms) | fps | vs 1 light |\n|---:|---:|---:|---:|\n", samples.size());
-        double one = 0.0;
-        for (int lights : {1, 2, 4, 8, 16}) {
-            const double t = measure(samples, lights, nullptr);
-            if (lights == 1) one = t;
-            std::printf("| %d | %.1f | %.1f | %+.1f%% |\n", lights, 1e3 * t, 1.0 / t, 100.0 * (t / one - 1.0));
-            std::fflush(stdout);
+        const std::vector<int> lightCounts = {1, 2, 4, 8, 16};
+        std::vector<std::unique_ptr<ScatteringRenderer>> renderers;
+        for (int lights : lightCounts) {
+            renderers.push_back(std::make_unique<ScatteringRenderer>());
+            renderers.back()->addObject({&object.mesh(), &samples, scene.objects.front().medium.g, std::nullopt});
+            renderers.back()->setLights(lightsAround(lights, bounds));
+        }
+        // Two cases: lights that stay put (an isotropic medium then reuses the light
+        // each sample receives) and lights that change every frame (recomputed).
+        std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size());
+        for (int round = 0; round < warmup + 2 * frames; ++round)
+            for (size_t k = 0; k < lightCounts.size(); ++k)
+                for (bool move : {false, true}) {
+                    if (move) renderers[k]->setLights(lightsAround(lightCounts[k], bounds));
+                    frame.bindAndClear();
+                    glFinish();
+                    const auto start = std::chrono::steady_clock::now();
+                    renderers[k]->draw(view);
+                    glFinish();
+                    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    if (round >= warmup) (move ? moving : still)[k].push_back(t);
+                }
+        std::printf("\n%zu samples, %d interleaved rounds:\n\n"
+                    "| lights | still lights: frame (ms) | vs 1 light | lights changing every frame: frame (ms) | vs 1 light |\n"
+                    "|---:|---:|---:|---:|---:|\n",
+                    samples.size(), 2 * frames);
+        const double oneStill = median(still[0]), oneMoving = median(moving[0]);
+        for (size_t k = 0; k < lightCounts.size(); ++k) {
+            const double s = median(still[k]), m = median(moving[k]);
+            std::printf("| %d | %.1f | %+.1f%% | %.1f | %+.1f%% |\n", lightCounts[k], 1e3 * s,
+                        100.0 * (s / oneStill - 1.0), 1e3 * m, 100.0 * (m / oneMoving - 1.0));
         }
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-render: error: %s\n", e.what());

@@ -11,4 +11,6 @@ extern const char* const fullscreen_vert;
 extern const char* const copy_depth_frag;
 extern const char* const tonemap_frag;
 extern const char* const segment_frag;
+extern const char* const sample_light_glsl;
+extern const char* const received_comp;
 }  // namespace lucent::shaders

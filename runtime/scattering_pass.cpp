@@ -17,24 +17,35 @@ GpuSamples::GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, d
         packed[2 * i + 1] = glm::vec4(samples.scattering[i] * weights[i], 0.0f);
     }
     glCreateVertexArrays(1, &vao_);
-    glCreateBuffers(2, buffers_);
+    glCreateBuffers(3, buffers_);
     glNamedBufferStorage(buffers_[0], GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
                          packed.empty() ? nullptr : packed.data(), 0);
     glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(samples.sh.size(), 1) * sizeof(float)),
                          samples.sh.empty() ? nullptr : samples.sh.data(), 0);
+    glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * sizeof(glm::vec4)), nullptr, 0);
 }
 
 GpuSamples::~GpuSamples() {
-    glDeleteBuffers(2, buffers_);
+    glDeleteBuffers(3, buffers_);
     glDeleteVertexArrays(1, &vao_);
+}
+
+void GpuSamples::bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers_[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers_[1]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, buffers_[2]);
 }
 
 void GpuSamples::draw() const {
     if (count_ == 0) return;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers_[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers_[1]);
     glBindVertexArray(vao_);
     glDrawArrays(GL_POINTS, 0, GLsizei(count_));
+}
+
+void GpuSamples::computeReceived() const {
+    if (count_ == 0) return;
+    glDispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 }  // namespace lucent

@@ -14,14 +14,21 @@ public:
     GpuSamples(const GpuSamples&) = delete;
     GpuSamples& operator=(const GpuSamples&) = delete;
 
-    // Binds the sample (0) and coefficient (2) buffers and draws one point per sample.
+    // Binds the sample (0), coefficient (2) and received-light (3) buffers.
+    void bind() const;
+    // One point per sample (buffers bound).
     void draw() const;
+    // Runs the bound compute program over the samples, filling the received light.
+    void computeReceived() const;
+    // Whether the received-light buffer holds the light of the current lights and scale.
+    bool receivedValid = false;
+    float receivedScale = 0.0f;
     int shOrder() const { return shOrder_; }
     int channels() const { return channels_; }
     size_t size() const { return count_; }
 
 private:
-    GLuint vao_ = 0, buffers_[2] = {0, 0};
+    GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
     size_t count_ = 0;
     int shOrder_ = 0, channels_ = 1;
 };

@@ -85,6 +85,26 @@ struct SegmentTarget {
     }
 };
 
+// GLSL has no #include: insert the shared sample-and-light code after the #version line.
+std::string withSampleLight(const char* source) {
+    const std::string text = source;
+    const size_t eol = text.find('\n') + 1;
+    return text.substr(0, eol) + shaders::sample_light_glsl + text.substr(eol);
+}
+
+void setShNormalisation(const GlProgram& program) {
+    // sqrt(2) K_lm (K_l0 for m = 0), so the shaders need no factorials.
+    float normalisation[64];
+    for (int l = 0; l < 8; ++l)
+        for (int m = 0; m <= l; ++m) {
+            double ratio = 1.0;  // (l-m)! / (l+m)!
+            for (int j = l - m + 1; j <= l + m; ++j) ratio /= double(j);
+            const double k = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio);
+            normalisation[l * l + l + m] = float(m == 0 ? k : std::sqrt(2.0) * k);
+        }
+    glProgramUniform1fv(program.id(), program.uniform("shNormalisation"), 64, normalisation);
+}
+
 struct Object {
     std::unique_ptr<GpuMesh> mesh;
     std::unique_ptr<GpuSamples> samples;
@@ -100,9 +120,12 @@ struct ScatteringRenderer::Impl {
                            {GL_FRAGMENT_SHADER, "shaders/depth_only.frag", shaders::depth_only_frag}};
     GlProgram surfaceProgram{{GL_VERTEX_SHADER, "shaders/mesh.vert", shaders::mesh_vert},
                              {GL_FRAGMENT_SHADER, "shaders/surface.frag", shaders::surface_frag}};
-    GlProgram scatterProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", shaders::scatter_vert},
+    std::string scatterVertex = withSampleLight(shaders::scatter_vert);
+    std::string receivedCompute = withSampleLight(shaders::received_comp);
+    GlProgram scatterProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", scatterVertex.c_str()},
                              {GL_GEOMETRY_SHADER, "shaders/scatter.geom", shaders::scatter_geom},
                              {GL_FRAGMENT_SHADER, "shaders/scatter.frag", shaders::scatter_frag}};
+    GlProgram receivedProgram{{GL_COMPUTE_SHADER, "shaders/received.comp", receivedCompute.c_str()}};
     GlProgram copyDepthProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
                                {GL_FRAGMENT_SHADER, "shaders/copy_depth.frag", shaders::copy_depth_frag}};
     GlProgram segmentProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
@@ -116,16 +139,8 @@ struct ScatteringRenderer::Impl {
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
         glCreateVertexArrays(1, &emptyVao);
-        // sqrt(2) K_lm (K_l0 for m = 0), so the shader needs no factorials.
-        float normalisation[64];
-        for (int l = 0; l < 8; ++l)
-            for (int m = 0; m <= l; ++m) {
-                double ratio = 1.0;  // (l-m)! / (l+m)!
-                for (int j = l - m + 1; j <= l + m; ++j) ratio /= double(j);
-                const double k = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio);
-                normalisation[l * l + l + m] = float(m == 0 ? k : std::sqrt(2.0) * k);
-            }
-        glProgramUniform1fv(scatterProgram.id(), scatterProgram.uniform("shNormalisation"), 64, normalisation);
+        setShNormalisation(scatterProgram);
+        setShNormalisation(receivedProgram);
     }
     ~Impl() {
         front.release();
@@ -172,6 +187,7 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     glNamedBufferStorage(impl_->lightBuffer, GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
                          packed.empty() ? nullptr : packed.data(), 0);
     impl_->lightCount = int(lights.size());
+    for (Object& o : impl_->objects) o.samples->receivedValid = false;
 }
 
 void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {
@@ -287,6 +303,25 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glBindTextureUnit(0, r.segments.texture);
         glUniform1i(p.uniform("raySegments"), 0);
         for (const Object& o : r.objects) {
+            o.samples->bind();
+            // Isotropic media: the received light does not depend on the view, so it
+            // is computed when the lights or the medium scale change, not every frame.
+            const bool cache = o.g == 0.0;
+            if (cache && (!o.samples->receivedValid || o.samples->receivedScale != options.extinctionScale)) {
+                const GlProgram& c = r.receivedProgram;
+                glUseProgram(c.id());
+                glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
+                glUniform1i(c.uniform("channels"), o.samples->channels());
+                glUniform1f(c.uniform("g"), 0.0f);
+                glUniform1i(c.uniform("lightCount"), r.lightCount);
+                glUniform1f(c.uniform("extinctionScale"), options.extinctionScale);
+                glUniform1i(c.uniform("sampleCount"), GLint(o.samples->size()));
+                o.samples->computeReceived();
+                o.samples->receivedValid = true;
+                o.samples->receivedScale = options.extinctionScale;
+                glUseProgram(p.id());
+            }
+            glUniform1i(p.uniform("receivedIsCached"), cache ? 1 : 0);
             glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
             glUniform1i(p.uniform("channels"), o.samples->channels());
             glUniform1f(p.uniform("g"), float(o.g));

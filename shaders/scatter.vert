@@ -1,27 +1,15 @@
 #version 450 core
+// (shaders/sample_light.glsl is inserted here)
 // Pass 2, per sample and per frame (thesis 3.4.2): the light each sample scatters
 // towards the camera, v_i = sigma_s w_i sum_j p(w_j, w_view) E_j psi_i(w_j) psi_i(w_view),
 // with psi_i the SH expansion of exp(-tau(b_i, w)). Done once per sample here, not
 // once per fragment, so that another light costs one more SH evaluation per sample.
-struct Sample {
-    vec4 centreWidth;  // world-space centre, Gaussian standard deviation
-    vec4 scattering;   // sigma_s times the partition-of-unity weight, per channel
-};
-layout(std430, binding = 0) readonly buffer Samples { Sample samples[]; };
-struct Light {
-    vec4 position;
-    vec4 power;
-};
-layout(std430, binding = 1) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = 2) readonly buffer Coefficients { float sh[]; };
-
-uniform int lightCount;
-uniform int shOrder;   // bands, at most 8
-uniform int channels;  // 1 (grey sigma_t) or 3
-uniform float g;       // Henyey-Greenstein mean cosine
-uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi becomes psi^k
 uniform vec3 cameraPosition;
 uniform mat4 view;
+// With an isotropic phase function the received light does not depend on the
+// view: shaders/received.comp computes it when lights change, and frames reuse it.
+uniform bool receivedIsCached;
+layout(std430, binding = 3) readonly buffer Received { vec4 cachedReceived[]; };
 
 out VertexOut {
     vec3 viewCentre;
@@ -29,78 +17,11 @@ out VertexOut {
     vec3 radiance;
 } v;
 
-const float PI = 3.14159265358979;
-uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
-
-// psi_i(d) per channel, clamped to the range a transmittance can take: the SH
-// expansion (real SH with the Condon-Shortley phase, as core/spherical_harmonics.cpp)
-// summed on the fly, without storing the basis.
-vec3 attenuation(int sampleIndex, vec3 d) {
-    int n = shOrder * shOrder;
-    int base = sampleIndex * channels * n;
-    vec3 psi = vec3(0.0);
-    float cm = 1.0, sm = 0.0, qmm = 1.0;
-    for (int m = 0; m < shOrder; ++m) {
-        float q2 = 0.0, q1 = qmm;
-        for (int l = m; l < shOrder; ++l) {
-            float q;
-            if (l == m) q = qmm;
-            else if (l == m + 1) q = d.z * (2.0 * m + 1.0) * qmm;
-            else q = ((2.0 * l - 1.0) * d.z * q1 - (l + m - 1.0) * q2) / float(l - m);
-            if (l > m) { q2 = q1; q1 = q; }
-            float kq = shNormalisation[l * l + l + m] * q;
-            int plus = base + l * l + l + m, minus = base + l * l + l - m;
-            if (m == 0) {
-                psi.r += sh[plus] * kq;
-                if (channels == 3) {
-                    psi.g += sh[plus + n] * kq;
-                    psi.b += sh[plus + 2 * n] * kq;
-                }
-            } else {
-                float c = kq * cm, s = kq * sm;
-                psi.r += sh[plus] * c + sh[minus] * s;
-                if (channels == 3) {
-                    psi.g += sh[plus + n] * c + sh[minus + n] * s;
-                    psi.b += sh[plus + 2 * n] * c + sh[minus + 2 * n] * s;
-                }
-            }
-        }
-        float c = cm * d.x - sm * d.y, s = cm * d.y + sm * d.x;
-        cm = c;
-        sm = s;
-        qmm *= -(2.0 * m + 1.0);
-    }
-    if (channels == 1) psi = vec3(psi.r);
-    psi = clamp(psi, 0.0, 1.0);
-    return extinctionScale == 1.0 ? psi : pow(psi, vec3(extinctionScale));
-}
-
-float henyeyGreenstein(float cosTheta) {
-    float denom = max(1.0 + g * g - 2.0 * g * cosTheta, 1e-6);
-    return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
-}
-
 void main() {
     int i = gl_VertexID;
     vec3 centre = samples[i].centreWidth.xyz;
     vec3 toCamera = normalize(cameraPosition - centre);
-    vec3 received = vec3(0.0);
-    for (int j = 0; j < lightCount; ++j) {
-        vec3 toLight;
-        vec3 irradiance = lights[j].power.rgb;
-        if (lights[j].position.w > 0.5) {
-            toLight = lights[j].position.xyz - centre;
-            float d2 = dot(toLight, toLight);
-            if (d2 <= 0.0) continue;
-            irradiance /= d2;  // inverse-square falloff: Lucent is physically based
-            toLight *= inversesqrt(d2);
-        } else {
-            toLight = -lights[j].position.xyz;
-        }
-        if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
-        // Phase between the light's propagation (-toLight) and the view's (toCamera).
-        received += henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * attenuation(i, toLight);
-    }
+    vec3 received = receivedIsCached ? cachedReceived[i].rgb : receivedLight(i, toCamera);
     v.radiance = extinctionScale * samples[i].scattering.rgb * received * attenuation(i, toCamera);
     v.viewCentre = (view * vec4(centre, 1.0)).xyz;
     v.width = samples[i].centreWidth.w;

@@ -108,6 +108,24 @@ TEST(SingleScattering, OsmesaAndEglGiveTheSameImage) {
     EXPECT_LE(worst, 1e-5f * peak);
 }
 
+TEST(SingleScattering, CachedReceivedLightMatchesThePerFrameComputation) {
+    // g = 0 caches the received light between light changes; any g != 0 computes it
+    // every frame in the vertex shader. At g = 1e-7 the two must agree.
+    test::ScratchDir dir;
+    SphereScene sphere(dir, 64);
+    PreprocessSettings s = qualityPreset("draft");
+    s.samples = 2000;
+    sphere.preprocess(s);
+    const Image cached = sphere.ss();
+    sphere.scene.objects[0].medium.g = 1e-7;
+    std::vector<std::string> warnings;
+    sphere.objects = loadObjects(sphere.scene, warnings);
+    const Image perFrame = sphere.ss();
+    const ImageError e = compareImages(cached, perFrame);
+    EXPECT_GT(e.pixels, 500u);
+    EXPECT_LT(e.relativeRmse, 1e-4);
+}
+
 TEST(SingleScattering, RejectsASampleFileOfAnotherObject) {
     test::ScratchDir dir;
     SphereScene sphere(dir, 16);
