@@ -31,52 +31,30 @@ ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds) {
 
 namespace {
 
-// A depth-only framebuffer whose depth texture the passes sample.
-struct DepthTarget {
+// A framebuffer with one texture the later passes sample: a depth texture
+// (GL_DEPTH_COMPONENT32F) or a colour one (the RG32F ray segments).
+struct TextureTarget {
+    GLenum format;
     GLuint framebuffer = 0, texture = 0;
     int width = 0, height = 0;
+    explicit TextureTarget(GLenum textureFormat) : format(textureFormat) {}
+    bool isDepth() const { return format == GL_DEPTH_COMPONENT32F; }
     void resize(int w, int h) {
         if (w == width && h == height) return;
         release();
         width = w;
         height = h;
         glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-        glTextureStorage2D(texture, 1, GL_DEPTH_COMPONENT32F, w, h);
+        glTextureStorage2D(texture, 1, format, w, h);
         glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glCreateFramebuffers(1, &framebuffer);
-        glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, texture, 0);
-        glNamedFramebufferDrawBuffer(framebuffer, GL_NONE);
+        glNamedFramebufferTexture(framebuffer, isDepth() ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0, texture, 0);
+        if (isDepth()) glNamedFramebufferDrawBuffer(framebuffer, GL_NONE);
         if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("OpenGL: depth framebuffer is incomplete");
+            throw Error("OpenGL: an internal framebuffer is incomplete");
     }
-    void clear(float depth) const { glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &depth); }
-    void release() {
-        if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
-        if (texture) glDeleteTextures(1, &texture);
-        framebuffer = texture = 0;
-        width = height = 0;
-    }
-};
-
-// A two-channel float target: the per-pixel ray segment inside the objects.
-struct SegmentTarget {
-    GLuint framebuffer = 0, texture = 0;
-    int width = 0, height = 0;
-    void resize(int w, int h) {
-        if (w == width && h == height) return;
-        release();
-        width = w;
-        height = h;
-        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-        glTextureStorage2D(texture, 1, GL_RG32F, w, h);
-        glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glCreateFramebuffers(1, &framebuffer);
-        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
-        if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("OpenGL: RG32F framebuffer is incomplete");
-    }
+    void clearDepth(float depth) const { glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &depth); }
     void release() {
         if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
         if (texture) glDeleteTextures(1, &texture);
@@ -133,8 +111,8 @@ struct ScatteringRenderer::Impl {
     std::vector<Object> objects;
     GLuint lightBuffer = 0;
     int lightCount = 0;
-    DepthTarget front, back, host;
-    SegmentTarget segments;
+    TextureTarget front{GL_DEPTH_COMPONENT32F}, back{GL_DEPTH_COMPONENT32F}, host{GL_DEPTH_COMPONENT32F};
+    TextureTarget segments{GL_RG32F};
     GLuint emptyVao = 0;
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
@@ -205,7 +183,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     glDepthMask(GL_TRUE);
 
     // The host's depth, copied so that no pass samples a texture it draws into.
-    r.host.clear(1.0f);
+    r.host.clearDepth(1.0f);
     if (options.hostDepthTexture) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.host.framebuffer);
         glDepthFunc(GL_ALWAYS);
@@ -221,12 +199,12 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     glEnable(GL_CULL_FACE);
     glUseProgram(r.depthProgram.id());
     glUniformMatrix4fv(r.depthProgram.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    r.front.clear(1.0f);
+    r.front.clearDepth(1.0f);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.front.framebuffer);
     glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
     r.drawMeshes();
-    r.back.clear(0.0f);
+    r.back.clearDepth(0.0f);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.back.framebuffer);
     glCullFace(GL_FRONT);
     glDepthFunc(GL_GREATER);
