@@ -46,7 +46,7 @@ public:
     std::vector<T> getArray(size_t count) {
         need(count * sizeof(T));
         std::vector<T> v(count);
-        std::memcpy(v.data(), bytes_.data() + offset_, count * sizeof(T));
+        if (count > 0) std::memcpy(v.data(), bytes_.data() + offset_, count * sizeof(T));  // data() may be null
         offset_ += count * sizeof(T);
         return v;
     }
@@ -111,6 +111,10 @@ SampleSet readSampleFile(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw Error(name, "cannot open sample file");
     const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return parseSampleFile(bytes, name);
+}
+
+SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& name) {
     if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
         throw Error(name, "not a Lucent sample file (wrong magic number)");
     Reader r(bytes, name);

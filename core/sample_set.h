@@ -48,5 +48,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples
 // Throws Error("FILE: problem") on a wrong magic or version, truncation, a size that
 // does not match the counts, a bad checksum or a non-finite value.
 SampleSet readSampleFile(const std::filesystem::path& file);
+// The same checks on bytes already in memory; name is used in messages.
+SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& name);
 
 }  // namespace lucent
