@@ -46,17 +46,17 @@ namespace {
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 // OpenMesh reports faces it refuses (non-manifold "complex edge"/"complex vertex")
-// only on its error stream; capture that stream while reading.
-class CapturedOpenMeshErrors {
+// only on its error stream, so Lucent takes that stream over: connected once for
+// the whole process, because OpenMesh's disconnect() leaks what connect() allocates.
+class OpenMeshErrorCapture {
 public:
-    CapturedOpenMeshErrors() {
-        ::omerr().disconnect(std::cerr);
-        ::omerr().connect(text_);
+    static OpenMeshErrorCapture& instance() {
+        static OpenMeshErrorCapture capture;
+        return capture;
     }
-    ~CapturedOpenMeshErrors() {
+    void clear() {
         ::omerr().flush();
-        ::omerr().disconnect(text_);
-        ::omerr().connect(std::cerr);
+        text_.str({});
     }
     std::string text() {
         ::omerr().flush();
@@ -64,6 +64,10 @@ public:
     }
 
 private:
+    OpenMeshErrorCapture() {
+        ::omerr().disconnect(std::cerr);
+        ::omerr().connect(text_);
+    }
     std::ostringstream text_;
 };
 
@@ -99,14 +103,12 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
     if (extension == ".stl") rejectNonFiniteBinaryStl(path);
     OmMesh om;
-    std::string openMeshErrors;
-    {
-        CapturedOpenMeshErrors capture;
-        OpenMesh::IO::Options options;
-        if (!OpenMesh::IO::read_mesh(om, file, options))
-            throw Error(file, "cannot read mesh (unsupported format or malformed file)");
-        openMeshErrors = capture.text();
-    }
+    OpenMeshErrorCapture& capture = OpenMeshErrorCapture::instance();
+    capture.clear();
+    OpenMesh::IO::Options options;
+    if (!OpenMesh::IO::read_mesh(om, file, options))
+        throw Error(file, "cannot read mesh (unsupported format or malformed file)");
+    const std::string openMeshErrors = capture.text();
     // OpenMesh skips a vertex line it cannot parse ("nan", "inf", garbage) and then
     // every face that uses it, reporting only the faces.
     if (openMeshErrors.find("invalid vertex index") != std::string::npos)
