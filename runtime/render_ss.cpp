@@ -7,16 +7,20 @@
 
 namespace lucent {
 
+SampleSet loadSamplesFor(const VolumeObject& object) {
+    SampleSet s = readSampleFile(object.desc().samples);
+    if (s.sceneFingerprint != object.desc().fingerprint)
+        throw Error(object.desc().samples.string(), "sample file was made for a different mesh or medium than object '" +
+                                                        object.desc().name + "'; run lucent preprocess again");
+    return s;
+}
+
 Image renderSingleScattering(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
                              const SsSettings& settings, std::string* backendUsed) {
     std::vector<SampleSet> sampleSets;
     Bounds3 bounds;
     for (const VolumeObject& o : objects) {
-        SampleSet s = readSampleFile(o.desc().samples);
-        if (s.sceneFingerprint != o.desc().fingerprint)
-            throw Error(o.desc().samples.string(), "sample file was made for a different mesh or medium than object '" +
-                                                       o.desc().name + "'; run lucent preprocess again");
-        sampleSets.push_back(std::move(s));
+        sampleSets.push_back(loadSamplesFor(o));
         bounds.extend(o.mesh().bounds().min);
         bounds.extend(o.mesh().bounds().max);
     }

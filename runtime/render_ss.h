@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/sample_set.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
 #include "runtime/offscreen_context.h"
@@ -16,6 +17,9 @@ struct SsSettings {
     bool surface = true;
     double cutoff = 1e-4;
 };
+
+// Reads an object's sample file and checks that it was made for this mesh and medium.
+SampleSet loadSamplesFor(const VolumeObject& object);
 
 // Reads each object's sample file (checking it belongs to the object) and renders.
 // backendUsed receives the backend that served the frame.

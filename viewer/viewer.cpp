@@ -21,6 +21,7 @@
 #include "runtime/gl_program.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
+#include "runtime/render_ss.h"
 #include "runtime/scattering_renderer.h"
 #include "viewer/viewer_state.h"
 
@@ -133,10 +134,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     std::vector<SampleSet> samples;
     Bounds3 bounds;
     for (const VolumeObject& o : objects) {
-        samples.push_back(readSampleFile(o.desc().samples));
-        if (samples.back().sceneFingerprint != o.desc().fingerprint)
-            throw Error(o.desc().samples.string(), "sample file was made for a different mesh or medium than object '" +
-                                                       o.desc().name + "'; run lucent preprocess again");
+        samples.push_back(loadSamplesFor(o));
         bounds.extend(o.mesh().bounds().min);
         bounds.extend(o.mesh().bounds().max);
     }
