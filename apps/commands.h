@@ -13,6 +13,7 @@ Command addPreprocessCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addInfoCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
+Command addBenchCommand(CLI::App& app);
 
 // Prints "lucent: warning: ..." lines.
 void printWarnings(const std::vector<std::string>& warnings);

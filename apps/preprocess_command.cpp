@@ -14,7 +14,7 @@ namespace lucent {
 
 Command addPreprocessCommand(CLI::App& app) {
     struct Options {
-        std::string scene, quality = "default";
+        std::string scene, quality = "default", scheme = "lucent";
         int samples = 0, directions = 0, projectionDirections = 0, shOrder = 0, threads = 0;
         uint64_t seed = 1;
         double widthFactor = 0.0;
@@ -30,8 +30,12 @@ Command addPreprocessCommand(CLI::App& app) {
     sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file");
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(CLI::Range(0.05, 20.0));
+    sub->add_option("--scheme", o->scheme,
+                    "lucent (default) or published: the thesis's scheme as written, for comparison (docs/accuracy.md)")
+        ->check(CLI::IsMember({"lucent", "published"}));
     return [o] {
         PreprocessSettings settings = qualityPreset(o->quality);
+        if (o->scheme == "published") settings = publishedScheme(settings);
         if (o->samples) settings.samples = o->samples;
         if (o->directions) settings.heuristicDirections = o->directions;
         if (o->projectionDirections) settings.projectionDirections = o->projectionDirections;

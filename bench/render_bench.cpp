@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
 
         auto measure = [&](const SampleSet& samples, int lights, double* usefulFraction) {
             ScatteringRenderer renderer;
-            renderer.addObject({&object.mesh(), &samples, scene.objects.front().medium.g, std::nullopt});
+            renderer.addObject(translucentObjectFor(object, samples));
             renderer.setLights(lightsAround(lights, bounds));
             std::vector<double> times;
             for (int f = 0; f < warmup + frames; ++f) {
@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
         std::vector<std::unique_ptr<ScatteringRenderer>> renderers;
         for (int lights : lightCounts) {
             renderers.push_back(std::make_unique<ScatteringRenderer>());
-            renderers.back()->addObject({&object.mesh(), &samples, scene.objects.front().medium.g, std::nullopt});
+            renderers.back()->addObject(translucentObjectFor(object, samples));
             renderers.back()->setLights(lightsAround(lights, bounds));
         }
         // Two cases: lights that stay put (an isotropic medium then reuses the light

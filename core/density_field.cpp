@@ -45,6 +45,14 @@ double LayeredDensity::integrate(const Vec3& a, const Vec3& b) const {
     return total;
 }
 
+std::optional<DensitySlab> LayeredDensity::slabAround(const Vec3& p) const {
+    const int s = slabOf(p[axis_]);
+    // The outermost slabs reach past the bounds: the field holds their value there.
+    const double lo = s == 0 ? -kInfinity : lo_ + width_ * s;
+    const double hi = s + 1 == int(values_.size()) ? kInfinity : lo_ + width_ * (s + 1);
+    return DensitySlab{axis_, lo, hi};
+}
+
 double LayeredDensity::minimum() const { return *std::min_element(values_.begin(), values_.end()); }
 double LayeredDensity::maximum() const { return *std::max_element(values_.begin(), values_.end()); }
 

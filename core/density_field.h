@@ -5,12 +5,19 @@
 // planes, trilinear grids split at voxel faces where the integrand is a cubic.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/math.h"
 
 namespace lucent {
+
+// Where a piecewise-constant field holds one value: between two planes normal to an axis.
+struct DensitySlab {
+    int axis;
+    double lo, hi;
+};
 
 class DensityField {
 public:
@@ -21,6 +28,9 @@ public:
     // Smallest and largest value anywhere: bounds on light penetration depth.
     virtual double minimum() const = 0;
     virtual double maximum() const = 0;
+    // The slab of constant density holding p, for fields that jump between slabs
+    // (the runtime clips each Gaussian to its slab); none for continuous fields.
+    virtual std::optional<DensitySlab> slabAround(const Vec3& p) const { return std::nullopt; }
 };
 
 class ConstantDensity final : public DensityField {
@@ -39,6 +49,7 @@ public:
     double integrate(const Vec3& a, const Vec3& b) const override;
     double minimum() const override;
     double maximum() const override;
+    std::optional<DensitySlab> slabAround(const Vec3& p) const override;
 
 private:
     int slabOf(double coordinate) const;

@@ -182,13 +182,16 @@ bool MeshRaycaster::contains(const Vec3& p) const {
 
 Vec3 MeshRaycaster::unitNormal(uint32_t face) const { return glm::normalize(tree_->normal[face]); }
 
-double MeshRaycaster::distanceToSurface(const Vec3& p) const {
+Vec3 MeshRaycaster::closestPoint(const Vec3& p) const {
     std::call_once(tree_->distanceTreeBuilt, [this] {
         tree_->distanceTree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
         tree_->distanceTree.build();
         tree_->distanceTree.accelerate_distance_queries();
     });
-    return std::sqrt(CGAL::to_double(tree_->distanceTree.squared_distance(toCgal(p))));
+    const auto q = tree_->distanceTree.closest_point(toCgal(p));
+    return Vec3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
 }
+
+double MeshRaycaster::distanceToSurface(const Vec3& p) const { return glm::length(closestPoint(p) - p); }
 
 }  // namespace lucent

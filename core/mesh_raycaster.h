@@ -39,6 +39,7 @@ public:
 
     bool contains(const Vec3& p) const;
     double distanceToSurface(const Vec3& p) const;
+    Vec3 closestPoint(const Vec3& p) const;  // on the surface
     const Bounds3& bounds() const { return bounds_; }
     Vec3 unitNormal(uint32_t face) const;
 

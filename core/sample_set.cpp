@@ -91,10 +91,15 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.put(p.meanRadius);
     w.put(p.widthFactor);
     w.put(p.cullEpsilon);
+    w.put(uint32_t(p.scheme));
+    w.put(p.regionAxis);
     w.putArray(s.positions);
     w.putArray(s.radii);
     w.putArray(s.widths);
     w.putArray(s.scattering);
+    w.putArray(s.extinction);
+    w.putArray(s.region);
+    w.putArray(s.image);
     w.putArray(s.sh);
     w.putArray(s.truncationError);
     Fingerprint checksum;
@@ -143,8 +148,13 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     p.meanRadius = r.get<float>();
     p.widthFactor = r.get<float>();
     p.cullEpsilon = r.get<float>();
+    const uint32_t scheme = r.get<uint32_t>();
+    if (scheme > uint32_t(SampleScheme::Published)) throw Error(name, "unknown sample scheme " + std::to_string(scheme));
+    p.scheme = SampleScheme(scheme);
+    p.regionAxis = r.get<uint32_t>();
+    if (p.regionAxis > kNoRegionAxis) throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
     // The counts fix the size: check it before allocating anything they claim.
-    const uint64_t perSample = sizeof(glm::vec3) * 2 + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
+    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
     const uint64_t expected = r.offset() + count * perSample + sizeof(uint64_t);
     if (count > (uint64_t(1) << 40) / perSample || bytes.size() != expected)
         throw Error(name, "sample file holds " + std::to_string(bytes.size()) + " bytes but its counts need " +
@@ -153,6 +163,9 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     s.radii = r.getArray<float>(count);
     s.widths = r.getArray<float>(count);
     s.scattering = r.getArray<glm::vec3>(count);
+    s.extinction = r.getArray<glm::vec3>(count);
+    s.region = r.getArray<glm::vec2>(count);
+    s.image = r.getArray<glm::vec3>(count);
     s.sh = r.getArray<float>(count * s.coefficientsPerSample());
     s.truncationError = r.getArray<float>(count);
     const size_t payload = r.offset();
@@ -161,10 +174,16 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     checksum.addBytes(bytes.data(), payload);
     if (checksum.value() != stored) throw Error(name, "sample file checksum does not match (corrupted)");
     if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.scattering) ||
+        !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) ||
         !allFinite(s.sh) || !allFinite(s.truncationError))
         throw Error(name, "sample file holds a non-finite value");
     for (size_t i = 0; i < count; ++i)
+    {
         if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f)) throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");
+        if (glm::any(glm::lessThan(s.scattering[i], glm::vec3(0.0f))) || glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
+            throw Error(name, "sample " + std::to_string(i) + " has a negative coefficient");
+        if (!(s.region[i].x <= s.region[i].y)) throw Error(name, "sample " + std::to_string(i) + " has an empty region");
+    }
     return s;
 }
 

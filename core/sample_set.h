@@ -12,6 +12,15 @@
 
 namespace lucent {
 
+// How the Gaussians reconstruct the scattered light (docs/accuracy.md).
+// Published: thesis 3.3 as written (layers from one spacing down, FWHM = radius,
+// weights by share of volume, the light at the centre held constant over the
+// Gaussian). Lucent: the first layer half a spacing down, Galerkin
+// partition-of-unity weights restricted to the inside, the Gaussians clipped to
+// their density slab, and the light varying exponentially across each Gaussian.
+enum class SampleScheme : uint32_t { Lucent = 0, Published = 1 };
+inline constexpr uint32_t kNoRegionAxis = 3;
+
 struct SampleParameters {
     uint64_t seed = 1;
     uint32_t heuristicDirections = 64;
@@ -21,6 +30,8 @@ struct SampleParameters {
     float meanRadius = 0.0f;     // r of thesis 3.2.4
     float widthFactor = 1.0f;    // Gaussian FWHM = widthFactor * Poisson radius (thesis 3.3.2)
     float cullEpsilon = 1e-3f;   // samples receiving less than this fraction of full light are culled
+    SampleScheme scheme = SampleScheme::Lucent;
+    uint32_t regionAxis = kNoRegionAxis;  // axis of the density slabs the Gaussians are clipped to
 };
 
 struct SampleSet {
@@ -33,7 +44,10 @@ struct SampleSet {
     std::vector<glm::vec3> positions;
     std::vector<float> radii;          // Poisson-disk radius
     std::vector<float> widths;         // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
-    std::vector<glm::vec3> scattering; // sigma_s(b_i) per channel
+    std::vector<glm::vec3> scattering; // w_i sigma_s(b_i) per channel: w_i is the partition-of-unity weight
+    std::vector<glm::vec3> extinction; // sigma_t(b_i) per channel
+    std::vector<glm::vec2> region;     // [lo, hi] of the density slab holding b_i along parameters.regionAxis
+    std::vector<glm::vec3> image;      // b_i mirrored across the nearest boundary of its region
     std::vector<float> sh;             // [sample][channel][coefficient]
     std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the SH order misses
 
@@ -41,7 +55,7 @@ struct SampleSet {
     size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
 };
 
-inline constexpr uint32_t kSampleFileVersion = 1;
+inline constexpr uint32_t kSampleFileVersion = 2;
 
 // Writes atomically (temporary file + rename).
 void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples);

@@ -27,6 +27,7 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& war
             if (!boundary_.contains(p))
                 throw Error(file.string(), "blocker is not inside its object '" + desc.name + "'");
         blockers_.emplace_back(blocker);
+        blockerMeshes_.push_back(std::move(blocker));
     }
 }
 
@@ -34,6 +35,25 @@ bool VolumeObject::insideBlocker(const Vec3& p) const {
     for (const auto& b : blockers_)
         if (b.contains(p)) return true;
     return false;
+}
+
+Vec3 VolumeObject::closestRegionBoundary(const Vec3& p) const {
+    Vec3 best = boundary_.closestPoint(p);
+    double distance = glm::length(best - p);
+    auto consider = [&](const Vec3& q) {
+        const double d = glm::length(q - p);
+        if (d < distance) best = q, distance = d;
+    };
+    for (const auto& b : blockers_) consider(b.closestPoint(p));
+    if (const auto slab = density_->slabAround(p)) {
+        for (double plane : {slab->lo, slab->hi}) {
+            if (!std::isfinite(plane)) continue;
+            Vec3 q = p;
+            q[slab->axis] = plane;
+            consider(q);
+        }
+    }
+    return best;
 }
 
 double VolumeObject::firstBlockerHit(const Vec3& origin, const Vec3& dir) const {

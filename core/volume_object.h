@@ -30,7 +30,11 @@ public:
     double densityPath(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
 
     bool contains(const Vec3& p) const { return boundary_.contains(p); }
+    const std::vector<TriangleMesh>& blockerMeshes() const { return blockerMeshes_; }
     bool insideBlocker(const Vec3& p) const;
+    // The nearest point of the region p lies in: the boundary, a blocker's surface
+    // or, where the density jumps between slabs, the slab's planes.
+    Vec3 closestRegionBoundary(const Vec3& p) const;
     // Distance to the first blocker surface along the ray, or infinity.
     double firstBlockerHit(const Vec3& origin, const Vec3& dir) const;
 
@@ -44,6 +48,7 @@ private:
     MeshRaycaster boundary_;
     std::unique_ptr<DensityField> density_;
     std::vector<MeshRaycaster> blockers_;
+    std::vector<TriangleMesh> blockerMeshes_;
 };
 
 // exp(-sigma_t * path) per channel, exactly 0 through a blocker (path = infinity)

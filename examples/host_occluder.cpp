@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
 
         // Lucent adds the translucent sphere, occluded by the host's depth.
         lucent::ScatteringRenderer lucentRenderer;
-        lucentRenderer.addObject({&object.mesh(), &samples, scene.objects.front().medium.g, scene.objects.front().surface});
+        lucentRenderer.addObject(lucent::translucentObjectFor(object, samples));
         lucentRenderer.setLights(scene.lights);
         lucent::DrawOptions options;
         options.hostDepthTexture = depth;

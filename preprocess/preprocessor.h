@@ -23,7 +23,13 @@ struct PreprocessSettings {
     double layerSpacing = 0.5;      // layer offset as a fraction of r (thesis 3.2.2: "fractions of" r)
     double cullEpsilon = 1e-3;      // receivable-light threshold, thesis 3.2.3
     int maxLayers = 128;
+    SampleScheme scheme = SampleScheme::Lucent;
 };
+
+// The scheme as the thesis publishes it (3.2-3.3), for comparison: layers from
+// one spacing down, Gaussian FWHM equal to the Poisson radius, weights by share
+// of volume; the counts and directions of base stay.
+PreprocessSettings publishedScheme(PreprocessSettings base);
 
 // draft, default or high; throws Error for anything else.
 PreprocessSettings qualityPreset(const std::string& name);

@@ -30,8 +30,7 @@ Image renderSingleScattering(const SceneDesc& scene, const std::vector<VolumeObj
     OffscreenFrame frame(view.width, view.height);
     ScatteringRenderer renderer(settings.cutoff);
     for (size_t i = 0; i < objects.size(); ++i) {
-        const ObjectDesc& d = objects[i].desc();
-        renderer.addObject({&objects[i].mesh(), &sampleSets[i], d.medium.g, d.surface});
+        renderer.addObject(translucentObjectFor(objects[i], sampleSets[i]));
     }
     renderer.setLights(scene.lights);
     frame.bindAndClear();

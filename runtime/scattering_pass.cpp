@@ -3,18 +3,21 @@
 #include <vector>
 
 #include "core/error.h"
-#include "runtime/sample_weights.h"
 
 namespace lucent {
 
-GpuSamples::GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, double cutoffSigmas)
-    : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)) {
+GpuSamples::GpuSamples(const SampleSet& samples)
+    : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
+      parameters_(samples.parameters) {
     if (samples.shOrder > 8) throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most 8");
-    const std::vector<float> weights = partitionOfUnityWeights(samples, boundary, cutoffSigmas);
-    std::vector<glm::vec4> packed(2 * count_);
+    // struct Sample of shaders/sample_light.glsl
+    std::vector<glm::vec4> packed(5 * count_);
     for (size_t i = 0; i < count_; ++i) {
-        packed[2 * i] = glm::vec4(samples.positions[i], samples.widths[i]);
-        packed[2 * i + 1] = glm::vec4(samples.scattering[i] * weights[i], 0.0f);
+        packed[5 * i] = glm::vec4(samples.positions[i], samples.widths[i]);
+        packed[5 * i + 1] = glm::vec4(samples.scattering[i], 0.0f);
+        packed[5 * i + 2] = glm::vec4(samples.extinction[i], 0.0f);
+        packed[5 * i + 3] = glm::vec4(samples.region[i], 0.0f, 0.0f);
+        packed[5 * i + 4] = glm::vec4(samples.image[i], 0.0f);
     }
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);
@@ -22,7 +25,8 @@ GpuSamples::GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, d
                          packed.empty() ? nullptr : packed.data(), 0);
     glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(samples.sh.size(), 1) * sizeof(float)),
                          samples.sh.empty() ? nullptr : samples.sh.data(), 0);
-    glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * sizeof(glm::vec4)), nullptr, 0);
+    // struct Received of shaders/sample_light.glsl
+    glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * 3 * sizeof(glm::vec4)), nullptr, 0);
 }
 
 GpuSamples::~GpuSamples() {

@@ -1,15 +1,15 @@
 #pragma once
-// A sample set on the GPU: centres, widths, weighted scattering coefficients and
-// SH coefficients in shader storage buffers, one point per sample.
+// A sample set on the GPU: centres, widths, weighted scattering and extinction
+// coefficients, density-slab regions and SH coefficients in shader storage
+// buffers, one point per sample.
 #include "core/sample_set.h"
-#include "core/triangle_mesh.h"
 #include "runtime/gl.h"
 
 namespace lucent {
 
 class GpuSamples {
 public:
-    GpuSamples(const SampleSet& samples, const TriangleMesh& boundary, double cutoffSigmas);
+    explicit GpuSamples(const SampleSet& samples);
     ~GpuSamples();
     GpuSamples(const GpuSamples&) = delete;
     GpuSamples& operator=(const GpuSamples&) = delete;
@@ -26,11 +26,13 @@ public:
     int shOrder() const { return shOrder_; }
     int channels() const { return channels_; }
     size_t size() const { return count_; }
+    const SampleParameters& parameters() const { return parameters_; }
 
 private:
     GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
     size_t count_ = 0;
     int shOrder_ = 0, channels_ = 1;
+    SampleParameters parameters_;
 };
 
 }  // namespace lucent

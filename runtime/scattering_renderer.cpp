@@ -6,12 +6,19 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/mesh_raycaster.h"
 #include "runtime/embedded_shaders.h"
 #include "runtime/gl_program.h"
 #include "runtime/mesh_pass.h"
 #include "runtime/scattering_pass.h"
 
 namespace lucent {
+
+TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples) {
+    TranslucentObject t{&object.mesh(), &samples, object.desc().medium.g, object.desc().surface, {}};
+    for (const TriangleMesh& blocker : object.blockerMeshes()) t.blockers.push_back(&blocker);
+    return t;
+}
 
 ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds) {
     ViewSetup v;
@@ -88,6 +95,8 @@ struct Object {
     std::unique_ptr<GpuSamples> samples;
     double g;
     std::optional<SurfaceDesc> surface;
+    std::vector<std::unique_ptr<GpuMesh>> blockers;
+    std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside?
 };
 
 }  // namespace
@@ -142,9 +151,10 @@ ScatteringRenderer::ScatteringRenderer(double cutoff) {
 ScatteringRenderer::~ScatteringRenderer() = default;
 
 void ScatteringRenderer::addObject(const TranslucentObject& object) {
-    impl_->objects.push_back({std::make_unique<GpuMesh>(*object.mesh),
-                              std::make_unique<GpuSamples>(*object.samples, *object.mesh, impl_->cutoffSigmas), object.g,
-                              object.surface});
+    Object o{std::make_unique<GpuMesh>(*object.mesh), std::make_unique<GpuSamples>(*object.samples), object.g,
+             object.surface, {}, std::make_unique<MeshRaycaster>(*object.mesh)};
+    for (const TriangleMesh* blocker : object.blockers) o.blockers.push_back(std::make_unique<GpuMesh>(*blocker));
+    impl_->objects.push_back(std::move(o));
 }
 
 size_t ScatteringRenderer::sampleCount() const {
@@ -193,12 +203,18 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glBindVertexArray(r.emptyVao);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    // Blockers are opaque: the camera's rays stop at their front faces as at the host's geometry.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glDepthFunc(GL_LESS);
+    glUseProgram(r.depthProgram.id());
+    glUniformMatrix4fv(r.depthProgram.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.host.framebuffer);
+    for (const Object& o : r.objects)
+        for (const auto& blocker : o.blockers) blocker->draw();
 
     // Where each pixel's ray enters the objects (nearest front face) and finally
     // leaves them (farthest back face).
-    glEnable(GL_CULL_FACE);
-    glUseProgram(r.depthProgram.id());
-    glUniformMatrix4fv(r.depthProgram.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
     r.front.clearDepth(1.0f);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r.front.framebuffer);
     glCullFace(GL_BACK);
@@ -223,6 +239,10 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glUseProgram(p.id());
         glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
         glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
+        // A camera inside an object sees no front face in front of it: its rays start inside.
+        bool cameraInside = false;
+        for (const Object& o : r.objects) cameraInside = cameraInside || o.boundary->contains(Vec3(view.cameraPosition));
+        glUniform1i(p.uniform("cameraInside"), cameraInside ? 1 : 0);
         glBindTextureUnit(0, r.front.texture);
         glBindTextureUnit(1, r.back.texture);
         glBindTextureUnit(2, r.host.texture);
@@ -270,6 +290,8 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glUniformMatrix4fv(p.uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
         glUniformMatrix4fv(p.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
         glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+        const glm::mat3 viewToWorld = glm::transpose(glm::mat3(view.view));
+        glUniformMatrix3fv(p.uniform("viewToWorld"), 1, GL_FALSE, glm::value_ptr(viewToWorld));
         // View-space direction through pixel (x, y) at z = -1 for this projection.
         const glm::mat4& P = view.projection;
         glUniform4f(p.uniform("pixelToView"), 2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
@@ -303,6 +325,8 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
             glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
             glUniform1i(p.uniform("channels"), o.samples->channels());
             glUniform1f(p.uniform("g"), float(o.g));
+            glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
+            glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
             o.samples->draw();
         }
     }

@@ -13,6 +13,7 @@
 #include "core/sample_set.h"
 #include "core/scene.h"
 #include "core/triangle_mesh.h"
+#include "core/volume_object.h"
 #include "runtime/gl.h"
 
 namespace lucent {
@@ -22,7 +23,11 @@ struct TranslucentObject {
     const SampleSet* samples;            // from lucent preprocess
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
+    std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
 };
+
+// A scene object with its sample set, as the renderer takes it (both must outlive the renderer).
+TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples);
 
 struct ViewSetup {
     glm::mat4 view{1.0f};

@@ -17,6 +17,8 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libglfw3-dev libimgui-dev xvfb xauth
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the plots of lucent bench accuracy
+  python3-matplotlib
 )
 
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi

@@ -3,11 +3,11 @@
 // The light each sample receives, for isotropic media, once per change of the
 // lights or of the medium scale rather than once per frame.
 layout(local_size_x = 64) in;
-layout(std430, binding = 3) writeonly buffer Received { vec4 cachedReceived[]; };
+layout(std430, binding = 3) writeonly buffer ReceivedCache { Received cachedReceived[]; };
 uniform int sampleCount;
 
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= sampleCount) return;
-    cachedReceived[i] = vec4(receivedLight(i, vec3(0.0, 0.0, 1.0)), 0.0);
+    cachedReceived[i] = receivedLight(i, vec3(0.0, 0.0, 1.0));
 }

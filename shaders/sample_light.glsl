@@ -4,6 +4,9 @@
 struct Sample {
     vec4 centreWidth;  // world-space centre, Gaussian standard deviation
     vec4 scattering;   // sigma_s times the partition-of-unity weight, per channel
+    vec4 extinction;   // sigma_t at the centre, per channel
+    vec4 region;       // [lo, hi] of its density slab along regionAxis
+    vec4 image;        // the centre mirrored across the nearest boundary of its region
 };
 layout(std430, binding = 0) readonly buffer Samples { Sample samples[]; };
 struct Light {
@@ -70,26 +73,48 @@ float henyeyGreenstein(float cosTheta) {
     return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
 }
 
-// sum_j p E_j psi_i(w_j): the light sample i receives, with the phase function
-// towards toCamera (any vector when g = 0, where p is the constant 1 / (4 pi)).
-vec3 receivedLight(int i, vec3 toCamera) {
+// What a sample receives from the lights: the light at its centre, and how it
+// changes across the Gaussian (its logarithmic gradient, weighted over the lights
+// by their share: the gradient of the log of a sum is that average). Moving
+// towards light j by d gains exp(sigma_t d) of transmittance and (1 + 2 d / r_j)
+// of irradiance, so the gradient is sigma_t towardLights + falloff.
+struct Received {
+    vec4 light;         // sum_j p E_j psi_i(w_j)
+    vec4 towardLights;  // sum_j share_j w_j
+    vec4 falloff;       // sum_j share_j 2 w_j / r_j (point lights)
+};
+
+// The light sample i receives, with the phase function towards toCamera (any
+// vector when g = 0, where p is the constant 1 / (4 pi)).
+Received receivedLight(int i, vec3 toCamera) {
     vec3 centre = samples[i].centreWidth.xyz;
-    vec3 received = vec3(0.0);
+    float width = samples[i].centreWidth.w;
+    vec3 received = vec3(0.0), toward = vec3(0.0), falloff = vec3(0.0);
+    float total = 0.0;
     for (int j = 0; j < lightCount; ++j) {
         vec3 toLight;
         vec3 irradiance = lights[j].power.rgb;
+        float inverseDistance = 0.0;
         if (lights[j].position.w > 0.5) {
             toLight = lights[j].position.xyz - centre;
-            float d2 = dot(toLight, toLight);
-            if (d2 <= 0.0) continue;
-            irradiance /= d2;  // inverse-square falloff: Lucent is physically based
-            toLight *= inversesqrt(d2);
+            // Inverse-square falloff (Lucent is physically based), averaged over the
+            // Gaussian's core: a light inside or on the object stays finite.
+            float d2 = max(dot(toLight, toLight), width * width);
+            irradiance /= d2;
+            inverseDistance = inversesqrt(d2);
+            toLight = length(toLight) > 0.0 ? normalize(toLight) : vec3(0.0, 0.0, 1.0);
         } else {
             toLight = -lights[j].position.xyz;
         }
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
-        received += henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * attenuation(i, toLight);
+        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * attenuation(i, toLight);
+        float share = light.r + light.g + light.b;
+        received += light;
+        toward += share * toLight;
+        falloff += share * 2.0 * inverseDistance * toLight;
+        total += share;
     }
-    return received;
+    float norm = total > 0.0 ? 1.0 / total : 0.0;
+    return Received(vec4(received, 0.0), vec4(toward * norm, 0.0), vec4(falloff * norm, 0.0));
 }

@@ -1,47 +1,104 @@
 #version 450 core
 // Pass 2 (thesis 3.4.2, eq. 3.4): the Gaussian of one sample integrated exactly
 // (erf) along this pixel's ray over the part of the ray inside the object (from
-// the front face to the farthest back face), stopped by the host's opaque geometry.
+// the front face to the farthest back face), stopped by the host's opaque
+// geometry and the object's blockers, and clipped to the sample's density slab.
 in GeometryOut {
-    flat vec3 viewCentre;
+    flat vec3 viewCentre;    // of this Gaussian: the sample's or its mirror image's
+    flat vec3 anchorOffset;  // that centre minus the sample's, where the light is known
     flat float width;
     flat vec3 radiance;
+    flat vec3 gradient[3];  // logarithmic gradient of the light per channel (shaders/scatter.vert)
+    flat vec3 extinction;
+    flat float viewDepth;   // < 0: the published scheme, or the centre is off screen
+    flat vec2 region;
 } f;
 
 uniform sampler2D raySegments;  // per pixel [t0, t1] inside the objects (shaders/segment.frag)
 uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
+uniform mat3 viewToWorld;
+uniform vec3 cameraPosition;
+uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
+uniform int channels;           // 1: one gradient serves all three channels
 uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
 
 out vec4 colour;
 
-// erfc for x >= 0: Abramowitz and Stegun 7.1.26 (absolute error < 1.5e-7), written
-// as a product with exp(-x^2) so that it keeps its relative accuracy in the tail.
-float erfcPositive(float x) {
+// erfc(x) exp(x^2) for x >= 0: Abramowitz and Stegun 7.1.26 (absolute error of
+// erfc < 1.5e-7). Kept apart from exp(-x^2) so that callers can fold that factor
+// into other exponents and nothing overflows or underflows on the way.
+float erfcScaled(float x) {
     float t = 1.0 / (1.0 + 0.3275911 * x);
-    float poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
-    return poly * exp(-x * x);
+    return t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
 }
 
-// erf(b) - erf(a) for a <= b, without cancellation when both lie in one tail.
-float erfDifference(float a, float b) {
-    if (a >= 0.0) return erfcPositive(a) - erfcPositive(b);
-    if (b <= 0.0) return erfcPositive(-b) - erfcPositive(-a);
-    return 2.0 - erfcPositive(-a) - erfcPositive(b);
+// int_t0^t1 exp(logAmplitude - |t dir - c|^2 / (2 s^2)) dt. Every factor that can
+// overflow (the amplitude) or underflow (the erfc tails, the distance to the ray)
+// is summed in one exponent first; tails subtract without cancellation.
+float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, float t1) {
+    float tc = dot(dir, c);
+    float h2 = max(dot(c, c) - tc * tc, 0.0);
+    float k = 1.0 / (sqrt(2.0) * s);
+    float a = (t0 - tc) * k, b = (t1 - tc) * k;
+    float e = logAmplitude - 0.5 * h2 / (s * s);
+    float value;
+    if (a >= 0.0) value = erfcScaled(a) * exp(e - a * a) - erfcScaled(b) * exp(e - b * b);
+    else if (b <= 0.0) value = erfcScaled(-b) * exp(e - b * b) - erfcScaled(-a) * exp(e - a * a);
+    else value = exp(min(e, 80.0)) * (2.0 - erfcScaled(-a) * exp(-a * a) - erfcScaled(b) * exp(-b * b));
+    return s * sqrt(0.5 * 3.14159265358979) * max(value, 0.0);
+}
+
+// The sample's light along this pixel's ray x = t dir, on the Gaussian centred at
+// c (the sample's centre b, or its image): exp(G . (x - b)) towards the lights,
+// times the transmittance to the eye relative to the centre's,
+// exp(-sigma_t ((t - t0) - viewDepth)). Gathered as exp(G' . (x - c)) times
+// exp(G . (c - b) + sigma_t (viewDepth - (dir . c - t0))), G' = G - sigma_t dir;
+// and a Gaussian times exp(G' . (x - c)) is exp(|G'|^2 s^2 / 2) times the Gaussian
+// centred at c + G' s^2.
+float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1) {
+    float s2 = f.width * f.width;
+    float logScale = dot(gradient, f.anchorOffset);
+    if (f.viewDepth >= 0.0) {
+        // Where the front face jumps (a concave object's silhouette in front of
+        // another part of it) this pixel's front says nothing about the centre's
+        // ray: beyond two widths of difference the correction stops growing.
+        float shift = f.viewDepth - (dot(dir, f.viewCentre - f.anchorOffset) - front);
+        logScale += extinction * (clamp(shift, -2.0 * f.width, 2.0 * f.width) - dot(dir, f.anchorOffset));
+        gradient -= extinction * dir;
+    }
+    return gaussianSegment(f.viewCentre + gradient * s2, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
 }
 
 void main() {
     vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
     float t0 = segment.x, t1 = segment.y;
-    if (t1 <= t0) discard;  // the ray misses the object, or the host hides it
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
+    if (regionAxis < 3) {
+        // The part of the ray inside the sample's density slab.
+        float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
+        if (abs(d) < 1e-20) {
+            if (o < f.region.x || o > f.region.y) discard;
+        } else {
+            float ta = (f.region.x - o) / d, tb = (f.region.y - o) / d;
+            t0 = max(t0, min(ta, tb));
+            t1 = min(t1, max(ta, tb));
+        }
+    }
+    if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
 
-    float s = f.width;
-    float tc = dot(dir, f.viewCentre);
-    float h2 = max(dot(f.viewCentre, f.viewCentre) - tc * tc, 0.0);
-    float k = 1.0 / (sqrt(2.0) * s);
-    // int_t0^t1 exp(-|o + t dir - c|^2 / (2 s^2)) dt
-    float integral = s * sqrt(0.5 * 3.14159265358979) * exp(-0.5 * h2 / (s * s)) * erfDifference((t0 - tc) * k, (t1 - tc) * k);
-    // The largest line integral of this Gaussian is s sqrt(2 pi).
-    if (integral < discardBelow * s * sqrt(2.0 * 3.14159265358979)) discard;
-    colour = vec4(f.radiance * max(integral, 0.0), 1.0);
+    vec3 integral;
+    // t0 of this pixel's own ray: the view transmittance starts at its front face.
+    float front = segment.x;
+    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1);
+    if (channels == 3) {
+        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1);
+        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1);
+    } else {
+        integral.gb = integral.rr;
+    }
+    // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
+    if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
+                                  discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
+        discard;
+    colour = vec4(f.radiance * integral, 1.0);
 }

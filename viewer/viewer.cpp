@@ -154,7 +154,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     {
         ScatteringRenderer renderer;
         for (size_t i = 0; i < objects.size(); ++i)
-            renderer.addObject({&objects[i].mesh(), &samples[i], objects[i].desc().medium.g, objects[i].desc().surface});
+            renderer.addObject(translucentObjectFor(objects[i], samples[i]));
         std::unique_ptr<OffscreenFrame> frame;
         int frameWidth = 0, frameHeight = 0;
         GlProgram tonemap{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},

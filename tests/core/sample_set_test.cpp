@@ -23,6 +23,9 @@ SampleSet makeSamples(size_t n, uint32_t channels = 3) {
         s.radii.push_back(0.1f + float(i));
         s.widths.push_back(0.05f + float(i));
         s.scattering.emplace_back(1.0f, 2.0f, 3.0f);
+        s.extinction.emplace_back(2.0f, 3.0f, 4.0f);
+        s.region.emplace_back(-1.0f, 0.5f + float(i));
+        s.image.emplace_back(float(i), 1.5f, -0.25f);
         for (size_t k = 0; k < s.coefficientsPerSample(); ++k) s.sh.push_back(float(i * 100 + k));
         s.truncationError.push_back(0.01f);
     }
@@ -60,6 +63,9 @@ TEST(SampleFile, RoundTrips) {
     EXPECT_EQ(r.positions, s.positions);
     EXPECT_EQ(r.sh, s.sh);
     EXPECT_EQ(r.widths, s.widths);
+    EXPECT_EQ(r.extinction, s.extinction);
+    EXPECT_EQ(r.region, s.region);
+    EXPECT_EQ(r.image, s.image);
     EXPECT_EQ(r.bounds.max, Vec3(2));
     // No temporary file is left next to it.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
@@ -92,6 +98,18 @@ TEST(SampleFile, RejectsDamagedFiles) {
     grown.push_back(0);
     EXPECT_NE(damaged("grown.lsf", grown).find("counts need"), std::string::npos);
     EXPECT_NE(readError(dir.path() / "absent.lsf").find("cannot open sample file"), std::string::npos);
+}
+
+TEST(SampleFile, RejectsNegativeCoefficientsAndEmptyRegions) {
+    test::ScratchDir dir;
+    SampleSet s = makeSamples(3);
+    s.extinction[1].g = -1.0f;
+    writeSampleFile(dir.path() / "negative.lsf", s);
+    EXPECT_NE(readError(dir.path() / "negative.lsf").find("negative coefficient"), std::string::npos);
+    s = makeSamples(3);
+    s.region[2] = glm::vec2(1.0f, 0.0f);
+    writeSampleFile(dir.path() / "region.lsf", s);
+    EXPECT_NE(readError(dir.path() / "region.lsf").find("empty region"), std::string::npos);
 }
 
 TEST(SampleFile, RejectsNonFiniteValues) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/rng.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -32,9 +33,82 @@ TEST(Preprocessor, SphereSamplesAreInsideAndNearTheRequestedCount) {
         EXPECT_LE(set.radii[i], 2.0 * r * (1 + 1e-5));
         // FWHM = width factor * radius.
         EXPECT_NEAR(set.widths[i] * 2.0 * std::sqrt(2.0 * std::log(2.0)), small().widthFactor * set.radii[i], 1e-5);
-        EXPECT_NEAR(set.scattering[i].g, 1.5, 1e-6);
+        EXPECT_NEAR(set.extinction[i].g, 2.0, 1e-6);
+        EXPECT_GT(set.scattering[i].g, 0.0f);  // sigma_s = 1.5 times a positive weight
+        // The mirror image lies across the sphere's surface, as far out as the centre is in.
+        const Vec3 image(set.image[i]);
+        EXPECT_NEAR(glm::length(image) - 1.0, 1.0 - glm::length(p), 2e-3);
     }
     EXPECT_EQ(set.sh.size(), set.size() * 16);
+}
+
+// sum_i w_i (gamma_i + gamma_i*) at p, w_i = scattering / sigma_s.
+double partitionOfUnity(const SampleSet& set, const Vec3& p, double sigmaS) {
+    double sum = 0.0;
+    for (size_t i = 0; i < set.size(); ++i) {
+        const double s2 = double(set.widths[i]) * set.widths[i];
+        const double w = set.scattering[i].g / sigmaS;
+        for (const Vec3 c : {Vec3(set.positions[i]), Vec3(set.image[i])}) sum += w * std::exp(-0.5 * glm::dot(p - c, p - c) / s2);
+    }
+    return sum;
+}
+
+TEST(Preprocessor, WeightedGaussiansAndImagesSumToOneUpToTheSurface) {
+    // A thin medium, so that samples spread evenly. Thesis eq. 3.3: the weighted
+    // Gaussians should sum to 1 inside; checked at random points, deep and within
+    // a tenth of a radius r of the surface, where plain Gaussians give about 1/2.
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 0.05, 1.0), warnings);
+    const SampleSet set = preprocessObject(sphere, small());
+    const double r = set.parameters.meanRadius;
+    Rng rng(7, 0);
+    double deep = 0.0, shallow = 0.0;
+    const int n = 200;
+    for (int k = 0; k < n; ++k) {
+        const double z = 2.0 * rng.uniform() - 1.0, phi = 2.0 * kPi * rng.uniform();
+        const Vec3 d(std::sqrt(1.0 - z * z) * std::cos(phi), std::sqrt(1.0 - z * z) * std::sin(phi), z);
+        deep += partitionOfUnity(set, (0.6 * rng.uniform()) * d, 0.05) / n;
+        shallow += partitionOfUnity(set, (1.0 - 0.1 * r * rng.uniform()) * d, 0.05) / n;
+    }
+    EXPECT_NEAR(deep, 1.0, 0.08);
+    EXPECT_NEAR(shallow, 1.0, 0.12);
+}
+
+TEST(Preprocessor, LayeredMediumClipsEachGaussianToItsSlab) {
+    ObjectDesc desc = test::simpleObject(test::modelsDir() / "cube.obj", 1.0, 0.8);
+    desc.medium.density.type = DensityDesc::Type::Layers;
+    desc.medium.density.axis = 1;
+    desc.medium.density.values = {0.5, 4.0};
+    std::vector<std::string> warnings;
+    const VolumeObject cube(desc, warnings);
+    const SampleSet set = preprocessObject(cube, small());
+    ASSERT_EQ(set.parameters.regionAxis, 1u);
+    const double mid = 0.5 * (cube.mesh().bounds().min.y + cube.mesh().bounds().max.y);
+    for (size_t i = 0; i < set.size(); ++i) {
+        const float y = set.positions[i].y;
+        EXPECT_LE(set.region[i].x, y);
+        EXPECT_GE(set.region[i].y, y);
+        // Below the middle plane the slab reaches down without end, above it up.
+        if (y < mid) EXPECT_NEAR(set.region[i].y, mid, 1e-5);
+        else EXPECT_NEAR(set.region[i].x, mid, 1e-5);
+        EXPECT_NEAR(set.extinction[i].r, y < mid ? 0.5 : 4.0, 1e-6);
+    }
+}
+
+TEST(Preprocessor, PublishedSchemeStartsOneSpacingDownWithEqualWeights) {
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75), warnings);
+    const SampleSet set = preprocessObject(sphere, publishedScheme(small()));
+    ASSERT_GT(set.size(), 500u);
+    EXPECT_EQ(set.parameters.scheme, SampleScheme::Published);
+    EXPECT_EQ(set.parameters.widthFactor, 1.0f);
+    double shallowest = 1.0;
+    for (size_t i = 0; i < set.size(); ++i) {
+        shallowest = std::min(shallowest, 1.0 - glm::length(Vec3(set.positions[i])));
+        EXPECT_FLOAT_EQ(set.scattering[i].g, set.scattering[0].g);
+    }
+    // Marching cubes places a layer within a fraction of a voxel of its offset.
+    EXPECT_GT(shallowest, 0.7 * set.parameters.layerSpacing);
 }
 
 TEST(Preprocessor, NoSampleInsideABlocker) {

@@ -1,0 +1,56 @@
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "apps/commands.h"
+#include "bench/accuracy_sweep.h"
+#include "core/error.h"
+
+namespace lucent {
+
+Command addBenchCommand(CLI::App& app) {
+    struct Options {
+        std::vector<std::string> scenes, knobs;
+        std::string output = "bench-accuracy", backend;
+        int size = 0, frames = 7;
+        double tolerance = 1e-3;
+        bool plot = true;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* bench = app.add_subcommand("bench", "Speed/accuracy sweeps (docs/accuracy.md)");
+    bench->require_subcommand(1);
+    CLI::App* sub = bench->add_subcommand(
+        "accuracy", "Sweep each quality knob; record preprocessing time, median frame time and error against "
+                    "--method reference; write CSV and the error-versus-time plots");
+    sub->add_option("scenes", o->scenes, "Scene files")->required();
+    sub->add_option("-o,--output", o->output, "Directory for accuracy.csv and the plots");
+    sub->add_option("--knobs", o->knobs, "Knobs to sweep (default all): samples, published, heuristic-directions, "
+                                         "projection-directions, sh-order, width-factor, cutoff, layer-spacing")
+        ->delimiter(',');
+    sub->add_option("--size", o->size, "Image width and height (default: each scene camera's)")->check(CLI::Range(8, 4096));
+    sub->add_option("--frames", o->frames, "Timed frames per setting (median reported)")->check(CLI::Range(1, 1000));
+    sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")->check(CLI::Range(1e-8, 0.5));
+    sub->add_option("--backend", o->backend, "osmesa or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+    sub->add_flag("!--no-plot", o->plot, "Write the CSV only (the plots need python3-matplotlib)");
+    return [o] {
+        AccuracyBenchOptions options;
+        options.knobs = o->knobs;
+        options.size = o->size;
+        options.frames = o->frames;
+        options.referenceTolerance = o->tolerance;
+        options.backend = parseGlBackend(o->backend);
+        accuracySweep(options.knobs, options.base);  // rejects an unknown knob before any work
+        std::vector<std::filesystem::path> scenes(o->scenes.begin(), o->scenes.end());
+        std::filesystem::create_directories(o->output);
+        const std::filesystem::path csv = std::filesystem::path(o->output) / "accuracy.csv";
+        runAccuracyBench(scenes, options, csv);
+        std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());
+        if (!o->plot) return;
+        const std::string command = "'" LUCENT_SOURCE_DIR "/scripts/plot-accuracy.py' '" + csv.string() +
+                                    "' '" + o->output + "'";
+        if (std::system(command.c_str()) != 0)
+            throw Error(csv.string(), "plotting failed (python3-matplotlib missing? scripts/install-deps.sh installs it)");
+    };
+}
+
+}  // namespace lucent

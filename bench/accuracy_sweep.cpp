@@ -1,0 +1,185 @@
+#include "bench/accuracy_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_compare.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+#include "reference/reference_renderer.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/scattering_renderer.h"
+
+namespace lucent {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+std::string format(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+struct Knob {
+    const char* name;
+    std::vector<double> values;
+    void (*apply)(SweepSetting&, double);
+};
+
+const std::vector<Knob>& knobs() {
+    static const std::vector<Knob> table = {
+        {"samples", {5000, 10000, 20000, 40000, 80000}, [](SweepSetting& s, double v) { s.preprocess.samples = int(v); }},
+        {"published", {5000, 10000, 20000, 40000, 80000},
+         [](SweepSetting& s, double v) {
+             s.preprocess = publishedScheme(s.preprocess);
+             s.preprocess.samples = int(v);
+         }},
+        {"heuristic-directions", {16, 32, 64, 128},
+         [](SweepSetting& s, double v) { s.preprocess.heuristicDirections = int(v); }},
+        {"projection-directions", {32, 64, 128, 256, 512},
+         [](SweepSetting& s, double v) { s.preprocess.projectionDirections = int(v); }},
+        {"sh-order", {2, 3, 4, 5, 6, 7}, [](SweepSetting& s, double v) { s.preprocess.shOrder = int(v); }},
+        {"width-factor", {1.0, 1.25, 1.5, 2.0, 2.5}, [](SweepSetting& s, double v) { s.preprocess.widthFactor = v; }},
+        {"cutoff", {1e-2, 1e-3, 1e-4, 1e-5}, [](SweepSetting& s, double v) { s.cutoff = v; }},
+        {"layer-spacing", {0.25, 0.5, 0.75, 1.0}, [](SweepSetting& s, double v) { s.preprocess.layerSpacing = v; }},
+    };
+    return table;
+}
+
+// Settings that preprocess alike share one sample set.
+std::string preprocessKey(const PreprocessSettings& p) {
+    char key[256];
+    std::snprintf(key, sizeof key, "%d/%d/%d/%d/%g/%g/%d", p.samples, p.heuristicDirections, p.projectionDirections,
+                  p.shOrder, p.widthFactor, p.layerSpacing, int(p.scheme));
+    return key;
+}
+
+const char* kCsvHeader =
+    "scene,knob,value,samples,preprocess_s,frame_ms,rel_rmse,mare,interior_rel_rmse,interior_mare,mean_ratio\n";
+
+}  // namespace
+
+std::vector<std::string> accuracyKnobNames() {
+    std::vector<std::string> names;
+    for (const auto& k : knobs()) names.push_back(k.name);
+    return names;
+}
+
+std::vector<SweepSetting> accuracySweep(const std::vector<std::string>& wanted, const PreprocessSettings& base) {
+    for (const auto& name : wanted)
+        if (std::none_of(knobs().begin(), knobs().end(), [&](const Knob& k) { return name == k.name; }))
+            throw Error("unknown knob '" + name + "' (expected one of: samples, published, heuristic-directions, "
+                        "projection-directions, sh-order, width-factor, cutoff, layer-spacing)");
+    std::vector<SweepSetting> settings;
+    for (const auto& knob : knobs()) {
+        if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), knob.name) == wanted.end()) continue;
+        for (double v : knob.values) {
+            SweepSetting s;
+            s.knob = knob.name;
+            s.value = format(v);
+            s.preprocess = base;
+            knob.apply(s, v);
+            settings.push_back(s);
+        }
+    }
+    return settings;
+}
+
+std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>& sceneFiles,
+                                       const AccuracyBenchOptions& options, const std::filesystem::path& csvFile) {
+    const std::vector<SweepSetting> settings = accuracySweep(options.knobs, options.base);
+    checkWritable(csvFile);
+    std::vector<SweepRow> rows;
+    std::string csv = kCsvHeader;
+    auto flushCsv = [&] {
+        AtomicFile out(csvFile);
+        out.stream() << csv;
+        out.commit();
+    };
+    const auto context = OffscreenContext::create(options.backend);
+
+    for (const auto& sceneFile : sceneFiles) {
+        SceneDesc scene = parseScene(sceneFile);
+        if (options.size > 0) scene.camera.width = scene.camera.height = options.size;
+        std::vector<std::string> warnings;
+        const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+        const std::string sceneName = sceneFile.stem().string();
+        Bounds3 bounds;
+        for (const auto& o : objects) {
+            bounds.extend(o.mesh().bounds().min);
+            bounds.extend(o.mesh().bounds().max);
+        }
+
+        std::fprintf(stderr, "lucent: bench: %s: reference (%dx%d, tolerance %g)\n", sceneName.c_str(),
+                     scene.camera.width, scene.camera.height, options.referenceTolerance);
+        ReferenceSettings referenceSettings;
+        referenceSettings.surface = false;
+        referenceSettings.tolerance = options.referenceTolerance;
+        const Image reference = ReferenceRenderer(scene, objects).render(referenceSettings);
+
+        const ViewSetup view = viewSetupFor(scene.camera, bounds);
+        OffscreenFrame frame(view.width, view.height);
+        std::map<std::string, std::pair<std::vector<SampleSet>, double>> preprocessed;
+        for (size_t k = 0; k < settings.size(); ++k) {
+            const SweepSetting& setting = settings[k];
+            std::fprintf(stderr, "lucent: bench: %s: %zu/%zu: %s = %s\n", sceneName.c_str(), k + 1, settings.size(),
+                         setting.knob.c_str(), setting.value.c_str());
+            auto& [sampleSets, preprocessSeconds] = preprocessed[preprocessKey(setting.preprocess)];
+            if (sampleSets.empty()) {
+                const auto start = Clock::now();
+                for (const auto& o : objects) sampleSets.push_back(preprocessObject(o, setting.preprocess));
+                preprocessSeconds = secondsSince(start);
+            }
+            ScatteringRenderer renderer(setting.cutoff);
+            size_t sampleCount = 0;
+            for (size_t i = 0; i < objects.size(); ++i) {
+                renderer.addObject(translucentObjectFor(objects[i], sampleSets[i]));
+                sampleCount += sampleSets[i].size();
+            }
+            renderer.setLights(scene.lights);
+            DrawOptions draw;
+            draw.surface = false;
+            std::vector<double> times;
+            for (int f = 0; f < options.warmup + options.frames; ++f) {
+                frame.bindAndClear();
+                glFinish();
+                const auto start = Clock::now();
+                renderer.draw(view, draw);
+                glFinish();
+                if (f >= options.warmup) times.push_back(secondsSince(start));
+            }
+            const Image image = frame.read();
+            const ImageError all = compareImages(image, reference), interior = compareImages(image, reference, 3);
+
+            SweepRow row{sceneName, setting.knob, setting.value, sampleCount, preprocessSeconds, 1e3 * median(times),
+                         all.relativeRmse, all.meanAbsoluteRelativeError, interior.relativeRmse,
+                         interior.meanAbsoluteRelativeError, all.meanRatio};
+            rows.push_back(row);
+            char line[512];
+            std::snprintf(line, sizeof line, "%s,%s,%s,%zu,%.4f,%.3f,%.5f,%.5f,%.5f,%.5f,%.5f\n", row.scene.c_str(),
+                          row.knob.c_str(), row.value.c_str(), row.samples, row.preprocessSeconds,
+                          row.frameMilliseconds, row.relativeRmse, row.mare, row.interiorRelativeRmse,
+                          row.interiorMare, row.meanRatio);
+            csv += line;
+            flushCsv();
+            std::fprintf(stderr, "lucent: bench:   %zu samples, preprocess %.2f s, frame %.1f ms, rel. RMSE %.2f%% (interior %.2f%%)\n",
+                         row.samples, row.preprocessSeconds, row.frameMilliseconds, 100 * row.relativeRmse,
+                         100 * row.interiorRelativeRmse);
+        }
+    }
+    return rows;
+}
+
+}  // namespace lucent

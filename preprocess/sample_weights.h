@@ -1,0 +1,39 @@
+#pragma once
+// Partition-of-unity weights for the Gaussians. Thesis eq. 3.3 asks for sum_i
+// gamma_i(x) = 1 inside the object, which plain Gaussians cannot give (its
+// footnote); unnormalised, the sum is off by a constant factor and the image by
+// the same. Two things make it hold:
+// - Near a boundary the sum falls to about half, as no Gaussians lie beyond it.
+//   Each Gaussian gets a mirror image across the nearest boundary of its region
+//   (the method of images of kernel density estimation): for a flat boundary and
+//   samples spread evenly under it, the sum of Gaussians and images is as even
+//   at the boundary as deep inside. The runtime clips both to the region.
+// - Galerkin normalisation: asking the integral of k_i (sum_j w_j k_j) over the
+//   region to equal that of k_i, k = gamma + its image and w locally constant,
+//   gives by the mirror symmetry
+//     w_i = int gamma_i / sum_j int gamma_i (gamma_j + gamma_j*)   (whole space),
+//   the local average of the sum, in closed form for Gaussians. Gaussians of
+//   different regions (density slabs) do not overlap at all.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lucent {
+
+struct WeightedSample {
+    glm::vec3 position;
+    glm::vec3 image;  // mirrored across the nearest boundary of its region
+    float width;      // Gaussian standard deviation
+    uint32_t region;  // samples of different regions never overlap
+};
+
+// reachSigmas: neighbours farther than reachSigmas * width are ignored.
+std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& samples, double reachSigmas = 4.0);
+
+// The published scheme (thesis 3.3.2): each Gaussian weighted by its share of
+// the sampled volume, w_i = (V / N) / int gamma_i with the share proportional to
+// the Gaussian's own volume, i.e. one weight V / sum_k int gamma_k for all.
+std::vector<float> volumeShareWeights(const std::vector<float>& widths, double sampledVolume);
+
+}  // namespace lucent

@@ -1,0 +1,210 @@
+// Numerical stability at the extremes (issue 4): every method renders every pixel
+// finite and non-negative for vanishing and enormous extinction, albedo 0 and 1,
+// tiny and huge objects, Gaussians far wider and narrower than a pixel, lights
+// inside and on the object, the camera inside it, 64 lights and a single sample.
+// Where the reference is defined, ss stays within the stated bounds of it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/image_compare.h"
+#include "preprocess/preprocessor.h"
+#include "reference/reference_renderer.h"
+#include "runtime/render_ss.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+struct Case {
+    double sigmaT = 2.0, albedo = 0.75, scale = 1.0, widthFactor = 1.5;
+    std::vector<Light> lights;
+    Vec3 camera{0, 0, 5};
+    int samples = 1500;
+    bool singleSample = false;
+};
+
+// The unit sphere scaled by c.scale (with sigma_t / scale, so that the image is
+// the same), 48x48 pixels.
+struct Render {
+    Image ss, reference;
+};
+
+Render render(const Case& c, const test::ScratchDir& dir) {
+    // Scale the sphere's vertices.
+    std::ifstream in(test::modelsDir() / "sphere.obj");
+    std::ostringstream out;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream v(line.substr(2));
+            double x, y, z;
+            v >> x >> y >> z;
+            out << "v " << x * c.scale << ' ' << y * c.scale << ' ' << z * c.scale << '\n';
+        } else {
+            out << line << '\n';
+        }
+    }
+    const auto mesh = dir.write("sphere.obj", out.str());
+    SceneDesc scene;
+    scene.camera.position = c.camera * c.scale;
+    scene.camera.target = Vec3(0, 0, c.camera.z > 1.0 ? 0.0 : -1.0) * c.scale;
+    scene.camera.fovYDegrees = c.camera.z > 1.0 ? 30 : 60;
+    scene.camera.width = scene.camera.height = 48;
+    for (Light l : c.lights) {
+        if (l.type == Light::Type::Point) {
+            l.position *= c.scale;
+            l.power *= c.scale * c.scale;  // the same irradiance at the scaled distance
+        }
+        scene.lights.push_back(l);
+    }
+    ObjectDesc o = test::simpleObject(mesh, c.sigmaT / c.scale, c.albedo);
+    o.samples = dir.path() / "sphere.lsf";
+    scene.objects = {o};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    PreprocessSettings settings = qualityPreset("draft");
+    settings.samples = c.samples;
+    settings.widthFactor = c.widthFactor;
+    SampleSet set = preprocessObject(objects[0], settings);
+    if (c.singleSample) {
+        set.positions.resize(1), set.radii.resize(1), set.widths.resize(1), set.scattering.resize(1);
+        set.extinction.resize(1), set.region.resize(1), set.image.resize(1), set.truncationError.resize(1);
+        set.sh.resize(set.coefficientsPerSample());
+    }
+    writeSampleFile(o.samples, set);
+    Render r;
+    r.ss = renderSingleScattering(scene, objects, SsSettings{GlBackend::Auto, false});
+    ReferenceSettings reference;
+    reference.surface = false;
+    reference.tolerance = 1e-3;
+    r.reference = ReferenceRenderer(scene, objects).render(reference);
+    return r;
+}
+
+Light pointLight(const Vec3& p, double intensity = 40.0) {
+    Light l;
+    l.position = p;
+    l.power = Rgb(intensity);
+    return l;
+}
+
+void expectFiniteAndNonNegative(const Image& image, const char* what) {
+    size_t bad = 0;
+    for (const auto& p : image.pixels)
+        for (int k = 0; k < 3; ++k) bad += !(std::isfinite(p[k]) && p[k] >= 0.0f);
+    EXPECT_EQ(bad, 0u) << what;
+}
+
+double meanOf(const Image& image) {
+    double sum = 0.0;
+    for (const auto& p : image.pixels) sum += p.g;
+    return sum / double(image.pixels.size());
+}
+
+// The mean ratio ss / reference, after checking both images.
+double checkedRatio(const Case& c) {
+    test::ScratchDir dir;
+    const Render r = render(c, dir);
+    expectFiniteAndNonNegative(r.ss, "ss");
+    expectFiniteAndNonNegative(r.reference, "reference");
+    const double ref = meanOf(r.reference);
+    return ref > 0.0 ? meanOf(r.ss) / ref : (meanOf(r.ss) == 0.0 ? 1.0 : kInfinity);
+}
+
+Case sphere(double sigmaT) {
+    Case c;
+    c.sigmaT = sigmaT;
+    c.lights = {pointLight(Vec3(3, 3, 3))};
+    return c;
+}
+
+TEST(Extremes, VanishingExtinction) {
+    // 1500 samples: the bounds are those of that count (docs/accuracy.md), wider than at the default.
+    EXPECT_NEAR(checkedRatio(sphere(1e-6)), 1.0, 0.1);
+}
+
+TEST(Extremes, EnormousExtinction) {
+    // Light dies within 1e-3 of the surface, far inside one Gaussian. Finite and
+    // non-negative; ss still loses this skin's light (open in issue 4), so no
+    // accuracy bound is claimed here.
+    checkedRatio(sphere(1e4));
+}
+
+TEST(Extremes, AlbedoZeroScattersNothingAndAlbedoOneStaysFinite) {
+    Case black = sphere(2.0);
+    black.albedo = 0.0;
+    EXPECT_EQ(checkedRatio(black), 1.0);  // both images exactly black
+    Case white = sphere(2.0);
+    white.albedo = 1.0;
+    EXPECT_NEAR(checkedRatio(white), 1.0, 0.1);
+}
+
+TEST(Extremes, TinyAndHugeObjectsGiveTheSameImage) {
+    test::ScratchDir unitDir, tinyDir, hugeDir;
+    const Image unit = render(sphere(2.0), unitDir).ss;
+    for (double scale : {1e-3, 1e3}) {
+        Case c = sphere(2.0);
+        c.scale = scale;
+        const Image scaled = render(c, scale < 1 ? tinyDir : hugeDir).ss;
+        expectFiniteAndNonNegative(scaled, "scaled");
+        // Measured 9%: the sampling is not yet exactly scale-invariant (open in issue 4).
+        EXPECT_LT(compareImages(scaled, unit).relativeRmse, 0.12) << "scale " << scale;
+    }
+}
+
+TEST(Extremes, GaussiansFarWiderAndNarrowerThanAPixel) {
+    for (double factor : {0.05, 20.0}) {
+        Case c = sphere(2.0);
+        c.widthFactor = factor;
+        // Narrow Gaussians miss most pixel rays (measured 0.28 of the light at
+        // FWHM 0.05 r), wide ones blur: finite, and within a factor 5.
+        const double ratio = checkedRatio(c);
+        EXPECT_GT(ratio, 1.0 / 5.0) << factor;
+        EXPECT_LT(ratio, 5.0) << factor;
+    }
+}
+
+TEST(Extremes, LightInsideAndOnTheSurface) {
+    for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0, 0.999, 0)}) {
+        Case c = sphere(2.0);
+        c.lights = {pointLight(p, 1.0)};
+        // The 1/r^2 peak is averaged over a Gaussian, which loses much of it
+        // (measured 0.36 with the light at the centre): finite, within a factor 4.
+        const double ratio = checkedRatio(c);
+        EXPECT_GT(ratio, 0.25);
+        EXPECT_LT(ratio, 4.0);
+    }
+}
+
+TEST(Extremes, CameraInsideTheObject) {
+    Case c = sphere(0.5);
+    c.camera = Vec3(0, 0, 0.5);
+    const double ratio = checkedRatio(c);
+    // The rays start at the eye (measured 0.72 of the reference's light; the
+    // Gaussians behind the eye are not drawn).
+    EXPECT_GT(ratio, 0.5);
+    EXPECT_LT(ratio, 1.5);
+}
+
+TEST(Extremes, SixtyFourLights) {
+    Case c = sphere(2.0);
+    for (int k = 0; k < 64; ++k) {
+        const double a = 2.0 * kPi * k / 64.0;
+        c.lights.push_back(pointLight(Vec3(3 * std::cos(a), 1.0, 3 * std::sin(a)), 1.0));
+    }
+    EXPECT_NEAR(checkedRatio(c), 1.0, 0.1);
+}
+
+TEST(Extremes, OneSample) {
+    Case c = sphere(2.0);
+    c.singleSample = true;
+    test::ScratchDir dir;
+    const Render r = render(c, dir);
+    expectFiniteAndNonNegative(r.ss, "ss");
+    EXPECT_GT(meanOf(r.ss), 0.0);
+}
+
+}  // namespace
+}  // namespace lucent
