@@ -139,21 +139,26 @@ void MeshRaycaster::crossings(const Vec3& origin, const Vec3& dir, std::vector<C
     out.resize(kept);
 }
 
-bool MeshRaycaster::insideIntervals(const Vec3& origin, const Vec3& dir, double tMax,
-                                    std::vector<Interval>& out) const {
+bool MeshRaycaster::insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out,
+                                    std::optional<bool> originInside) const {
     out.clear();
     thread_local std::vector<Crossing> cs;
     crossings(origin, dir, cs);
-    // The ray is outside after its last crossing, so the stretch before each
-    // crossing is inside exactly when that crossing is an exit.
+    // Crossings alternate between entries and exits, and the stretch before an exit
+    // is inside. A ray that grazes an edge can be reported crossing only one of its
+    // two faces (single precision); then two entries or two exits follow each other,
+    // and a containment test of the stretch between them settles it.
+    bool inside = originInside.value_or(!cs.empty() && cs.front().exits);
     double start = 0.0;
     for (const Crossing& c : cs) {
         if (start >= tMax) break;
-        if (c.exits && c.t > start) {
+        if (c.exits != inside) inside = contains(origin + 0.5 * (start + c.t) * dir);
+        if (inside && c.t > start) {
             const double t1 = std::min(c.t, tMax);
             if (!out.empty() && out.back().t1 >= start) out.back().t1 = t1;
             else out.push_back({start, t1});
         }
+        inside = !c.exits;
         start = c.t;
     }
     return !out.empty();

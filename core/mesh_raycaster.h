@@ -3,6 +3,7 @@
 // crossing along a ray (concave meshes are crossed several times), the parts of a
 // ray that lie inside, point containment and distance to the surface.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/math.h"
@@ -31,8 +32,10 @@ public:
     void crossings(const Vec3& origin, const Vec3& dir, std::vector<Crossing>& out) const;
 
     // The parts of origin + t dir, 0 <= t <= tMax, inside the mesh, sorted.
-    // Returns false only when the ray is never inside.
-    bool insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out) const;
+    // Returns false only when the ray is never inside. originInside says whether
+    // the origin lies inside; without it, a first crossing that exits says so.
+    bool insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out,
+                         std::optional<bool> originInside = std::nullopt) const;
 
     // Distance to the first crossing, or infinity.
     double firstHit(const Vec3& origin, const Vec3& dir) const;

@@ -100,6 +100,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.putArray(s.extinction);
     w.putArray(s.region);
     w.putArray(s.image);
+    w.putArray(s.boundary);
     w.putArray(s.sh);
     w.putArray(s.truncationError);
     Fingerprint checksum;
@@ -154,7 +155,7 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     p.regionAxis = r.get<uint32_t>();
     if (p.regionAxis > kNoRegionAxis) throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
     // The counts fix the size: check it before allocating anything they claim.
-    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
+    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
     const uint64_t expected = r.offset() + count * perSample + sizeof(uint64_t);
     if (count > (uint64_t(1) << 40) / perSample || bytes.size() != expected)
         throw Error(name, "sample file holds " + std::to_string(bytes.size()) + " bytes but its counts need " +
@@ -166,6 +167,7 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     s.extinction = r.getArray<glm::vec3>(count);
     s.region = r.getArray<glm::vec2>(count);
     s.image = r.getArray<glm::vec3>(count);
+    s.boundary = r.getArray<BoundaryBall>(count);
     s.sh = r.getArray<float>(count * s.coefficientsPerSample());
     s.truncationError = r.getArray<float>(count);
     const size_t payload = r.offset();
@@ -174,7 +176,7 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     checksum.addBytes(bytes.data(), payload);
     if (checksum.value() != stored) throw Error(name, "sample file checksum does not match (corrupted)");
     if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.scattering) ||
-        !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) ||
+        !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) || !allFinite(s.boundary) ||
         !allFinite(s.sh) || !allFinite(s.truncationError))
         throw Error(name, "sample file holds a non-finite value");
     for (size_t i = 0; i < count; ++i)
@@ -183,6 +185,10 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
         if (glm::any(glm::lessThan(s.scattering[i], glm::vec3(0.0f))) || glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
             throw Error(name, "sample " + std::to_string(i) + " has a negative coefficient");
         if (!(s.region[i].x <= s.region[i].y)) throw Error(name, "sample " + std::to_string(i) + " has an empty region");
+        const BoundaryBall& b = s.boundary[i];
+        if (b.valid() && (std::abs(glm::length(b.normal) - 1.0f) > 1e-3f || b.curvature < 0.0f ||
+                          b.curvature * b.depth > 1.0f || !(b.share >= 0.0f && b.share <= 1.0f)))
+            throw Error(name, "sample " + std::to_string(i) + " has an invalid boundary ball");
     }
     return s;
 }

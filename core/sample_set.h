@@ -34,6 +34,19 @@ struct SampleParameters {
     uint32_t regionAxis = kNoRegionAxis;  // axis of the density slabs the Gaussians are clipped to
 };
 
+// A ball of the medium tangent to the object's boundary at the point nearest to a
+// sample, standing for the object around it: its transmittance is exp(-tau) up to
+// the curvature and the density beyond, and it holds the step at the horizon that
+// low-order SH cannot (preprocess/sh_projection.h).
+struct BoundaryBall {
+    glm::vec3 normal{0.0f};  // outward unit normal at the nearest boundary point
+    float depth = -1.0f;     // distance of the sample to it; < 0: no ball (the published scheme)
+    float curvature = 0.0f;  // 1 / radius, of the boundary there; 0: the half-space under the tangent plane
+    float share = 0.0f;      // in [0, 1]: how much of the ball's transmittance psi_i takes
+    bool valid() const { return depth >= 0.0f; }
+};
+static_assert(sizeof(BoundaryBall) == 6 * sizeof(float));
+
 struct SampleSet {
     uint32_t shOrder = 5;        // bands; shOrder^2 coefficients per channel
     uint32_t channels = 1;       // 1 when sigma_t is grey, 3 when it differs per channel
@@ -48,14 +61,15 @@ struct SampleSet {
     std::vector<glm::vec3> extinction; // sigma_t(b_i) per channel
     std::vector<glm::vec2> region;     // [lo, hi] of the density slab holding b_i along parameters.regionAxis
     std::vector<glm::vec3> image;      // b_i mirrored across the nearest boundary of its region
+    std::vector<BoundaryBall> boundary;// the SH hold exp(-tau) minus share times its transmittance
     std::vector<float> sh;             // [sample][channel][coefficient]
-    std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the SH order misses
+    std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the ball and SH miss
 
     size_t size() const { return positions.size(); }
     size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
 };
 
-inline constexpr uint32_t kSampleFileVersion = 2;
+inline constexpr uint32_t kSampleFileVersion = 3;
 
 // Writes atomically (temporary file + rename).
 void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples);

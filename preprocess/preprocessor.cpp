@@ -66,6 +66,36 @@ std::pair<double, double> densityRange(const std::vector<HeuristicPoint>& points
     return {lo, hi > lo ? hi : lo + 1.0};
 }
 
+// p's boundary ball (SampleSet::boundary): tangent to the object's outer boundary
+// at its nearest point, with the surface's mean curvature there (0 where it is
+// concave). Blockers and density slabs are left out, since light leaves the object
+// only through its boundary. The curvature comes from how the direction to the
+// nearest point turns as p moves sideways: by 1 / (R - d) per unit on a sphere.
+// Steps of a few triangles see the curvature of the tessellated surface, not the
+// flatness of one triangle, but stay well inside the large faces of a box.
+BoundaryBall boundaryBall(const VolumeObject& object, const Vec3& p, double curvatureStep) {
+    const MeshRaycaster& boundary = object.boundary();
+    auto towardSurface = [&](const Vec3& x, double& distance) {
+        const Vec3 offset = boundary.closestPoint(x) - x;
+        distance = glm::length(offset);
+        return distance > 0.0 ? offset / distance : Vec3(0.0);
+    };
+    double depth = 0.0;
+    const Vec3 n = towardSurface(p, depth);
+    BoundaryBall ball;
+    if (!(depth > 0.0)) return ball;
+    ball.normal = glm::vec3(n);
+    ball.depth = float(depth);
+    const Vec3 t1 = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, Vec3(1, 0, 0)) : glm::cross(n, Vec3(0, 1, 0)));
+    const Vec3 t2 = glm::cross(n, t1);
+    const double step = std::max(0.1 * depth, curvatureStep);
+    double turning = 0.0, unused = 0.0;
+    for (const Vec3& t : {t1, t2}) turning += glm::dot(towardSurface(p + step * t, unused) - n, t) / step;
+    const double levelCurvature = std::max(0.5 * turning, 0.0);
+    ball.curvature = float(levelCurvature / (1.0 + levelCurvature * depth));
+    return ball;
+}
+
 }  // namespace
 
 double negligibleLightDepth(double extinction, double epsilon) {
@@ -231,6 +261,12 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
 
     p.scheme = settings.scheme;
 
+    double edgeLength = 0.0;
+    for (const auto& t : object.mesh().triangles)
+        edgeLength += glm::length(object.mesh().positions[t[1]] - object.mesh().positions[t[0]]);
+    edgeLength /= double(std::max<size_t>(object.mesh().triangles.size(), 1));
+    const Vec3 extent = object.mesh().bounds().max - object.mesh().bounds().min;
+    const double curvatureStep = std::min(2.0 * edgeLength, 0.25 * std::min({extent.x, extent.y, extent.z}));
     std::vector<Vec3> positions;
     std::vector<WeightedSample> weighted;
     for (const auto& d : disks) {
@@ -259,6 +295,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
         }
         set.region.push_back(region);
         set.image.emplace_back(image);
+        set.boundary.push_back(published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep));
         weighted.push_back({glm::vec3(d.position), glm::vec3(image), width, regionKey});
     }
     // Partition-of-unity weights: thesis eq. 3.3 normalised (preprocess/sample_weights.h).
@@ -284,9 +321,11 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     projection.order = settings.shOrder;
     projection.directions = settings.projectionDirections;
     projection.seed = settings.seed;
-    ProjectionResult projected = projectAttenuation(object, positions, projection, int(set.channels));
+    ProjectionResult projected =
+        projectAttenuation(object, positions, set.boundary, projection, int(set.channels));
     set.sh = std::move(projected.coefficients);
     set.truncationError = std::move(projected.truncationError);
+    set.boundary = std::move(projected.balls);
     t.projectionRays = projected.raysCast;
     t.projection = clock.lap();
     return set;

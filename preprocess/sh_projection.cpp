@@ -10,13 +10,34 @@
 
 namespace lucent {
 
+double ballExitDistance(double cosine, double depth, double curvature) {
+    // |x + s w| = R with |x| = R - d, x . w = (R - d) cos, solved for s >= 0 in a
+    // form that stays exact as the curvature goes to 0 (the half-space, s = d / cos).
+    if (curvature <= 0.0) return cosine > 0.0 ? depth / cosine : kInfinity;
+    const double kd = std::min(curvature * depth, 1.0);
+    const double a = (1.0 - kd) * cosine, b = kd * (2.0 - kd);
+    const double root = std::sqrt(a * a + b);
+    if (a >= 0.0) return a + root > 0.0 ? depth * (2.0 - kd) / (a + root) : kInfinity;
+    return (root - a) / curvature;
+}
+
+Rgb ballTransmittance(const Rgb& sigmaT, const BoundaryBall& ball, const Vec3& w) {
+    if (!ball.valid()) return Rgb(0.0);
+    const double s = ballExitDistance(glm::dot(w, Vec3(ball.normal)), ball.depth, ball.curvature);
+    if (!std::isfinite(s)) return Rgb(0.0);
+    return glm::exp(-sigmaT * s);
+}
+
 ProjectionResult projectAttenuation(const VolumeObject& object, const std::vector<Vec3>& positions,
-                                    const ProjectionSettings& settings, int channels) {
+                                    const std::vector<BoundaryBall>& balls, const ProjectionSettings& settings,
+                                    int channels) {
     const int n = shCoefficientCount(settings.order);
     ProjectionResult result;
     result.channels = channels;
     result.coefficients.assign(positions.size() * size_t(channels) * n, 0.0f);
     result.truncationError.assign(positions.size(), 0.0f);
+    result.balls = balls;
+    if (result.balls.empty()) result.balls.assign(positions.size(), BoundaryBall{});
     // One randomly rotated lattice for every sample: its basis values are computed
     // once, and every sample's quadrature error has the same structure.
     std::vector<Vec3> lattice = fibonacciSphere(settings.directions);
@@ -32,31 +53,63 @@ ProjectionResult projectAttenuation(const VolumeObject& object, const std::vecto
     Progress progress("SH projection", positions.size());
 
     tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 32), [&](const tbb::blocked_range<size_t>& range) {
-        std::vector<double> coefficients(size_t(channels) * n);
-        for (size_t i = range.begin(); i < range.end(); ++i) {
+        const size_t D = lattice.size();
+        const size_t C = size_t(channels);
+        std::vector<double> psi(D * C), model(D * C), psiRest(D * C), modelRest(D * C);
+        std::vector<double> psiCoefficients(C * n), modelCoefficients(C * n);
+        // Coefficients of f, and f minus its truncated expansion on the lattice.
+        auto project = [&](const std::vector<double>& f, std::vector<double>& coefficients, std::vector<double>& rest) {
             std::fill(coefficients.begin(), coefficients.end(), 0.0);
-            double squaredNorm[3] = {0, 0, 0};
-            for (size_t d = 0; d < lattice.size(); ++d) {
-                const Rgb psi = transmittance(sigmaT, object.densityPath(positions[i], lattice[d]));
-                const double* basis = &basisTable[d * n];
-                for (int c = 0; c < channels; ++c) {
-                    squaredNorm[c] += weight * psi[c] * psi[c];
-                    for (int k = 0; k < n; ++k) coefficients[size_t(c) * n + k] += weight * psi[c] * basis[k];
+            for (size_t d = 0; d < D; ++d)
+                for (size_t c = 0; c < C; ++c)
+                    for (int k = 0; k < n; ++k) coefficients[c * n + k] += weight * f[d * C + c] * basisTable[d * n + k];
+            for (size_t d = 0; d < D; ++d)
+                for (size_t c = 0; c < C; ++c) {
+                    double v = f[d * C + c];
+                    for (int k = 0; k < n; ++k) v -= coefficients[c * n + k] * basisTable[d * n + k];
+                    rest[d * C + c] = v;
+                }
+        };
+        for (size_t i = range.begin(); i < range.end(); ++i) {
+            for (size_t d = 0; d < D; ++d) {
+                const Rgb t = transmittance(sigmaT, object.densityPath(positions[i], lattice[d]));
+                for (size_t c = 0; c < C; ++c) psi[d * C + c] = t[c];
+            }
+            project(psi, psiCoefficients, psiRest);
+            double norm = 0.0, lost = 0.0;
+            for (size_t j = 0; j < D * C; ++j) {
+                norm += psi[j] * psi[j];
+                lost += psiRest[j] * psiRest[j];
+            }
+            // The share of the ball's transmittance that leaves the least of psi
+            // outside the SH bands (least squares on the lattice): close to 1 where
+            // the ball is a good model of the object around the sample, 0 where not.
+            BoundaryBall& ball = result.balls[i];
+            ball.share = 0.0f;
+            if (ball.valid()) {
+                const Rgb localSigmaT = object.extinction(positions[i]);
+                BoundaryBall full = ball;
+                full.share = 1.0f;
+                for (size_t d = 0; d < D; ++d) {
+                    const Rgb t = ballTransmittance(localSigmaT, full, lattice[d]);
+                    for (size_t c = 0; c < C; ++c) model[d * C + c] = t[c];
+                }
+                project(model, modelCoefficients, modelRest);
+                double cross = 0.0, modelNorm = 0.0;
+                for (size_t j = 0; j < D * C; ++j) {
+                    cross += psiRest[j] * modelRest[j];
+                    modelNorm += modelRest[j] * modelRest[j];
+                }
+                if (modelNorm > 0.0) {
+                    const double share = std::clamp(cross / modelNorm, 0.0, 1.0);
+                    lost += -2.0 * share * cross + share * share * modelNorm;
+                    ball.share = float(share);
                 }
             }
-            float* out = &result.coefficients[i * size_t(channels) * n];
-            double worst = 0.0;
-            for (int c = 0; c < channels; ++c) {
-                double captured = 0.0;
-                for (int k = 0; k < n; ++k) {
-                    const double v = coefficients[size_t(c) * n + k];
-                    captured += v * v;
-                    out[c * n + k] = float(v);
-                }
-                // Parseval: sum of squared coefficients -> integral of psi^2 as the order grows.
-                if (squaredNorm[c] > 0.0) worst = std::max(worst, 1.0 - captured / squaredNorm[c]);
-            }
-            result.truncationError[i] = float(std::clamp(worst, 0.0, 1.0));
+            float* out = &result.coefficients[i * C * n];
+            for (size_t k = 0; k < C * n; ++k)
+                out[k] = float(psiCoefficients[k] - (ball.share > 0.0f ? double(ball.share) * modelCoefficients[k] : 0.0));
+            result.truncationError[i] = norm > 0.0 ? float(std::clamp(lost / norm, 0.0, 1.0)) : 0.0f;
             progress.advance();
         }
     });

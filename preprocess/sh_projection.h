@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/sample_set.h"
 #include "core/volume_object.h"
 
 namespace lucent {
@@ -21,11 +22,24 @@ struct ProjectionResult {
     int channels = 1;
     std::vector<float> coefficients;     // [sample][channel][order^2]
     std::vector<float> truncationError;  // per sample, worst channel
+    std::vector<BoundaryBall> balls;     // per sample, curvature and share fitted
     uint64_t raysCast = 0;
 };
 
+// Distance from depth d inside a ball of the given curvature (0: a half-space) to
+// its surface along a direction at cosine cos to the outward normal; infinite
+// when a half-space is never left.
+double ballExitDistance(double cosine, double depth, double curvature);
+// exp(-sigma_t s) along w, at the ball's full share.
+Rgb ballTransmittance(const Rgb& sigmaT, const BoundaryBall& ball, const Vec3& w);
+
 // channels = 1 projects with sigma_t.r only (grey media); 3 projects each channel.
+// With balls (one per position, normal and depth set, SampleSet::boundary), each
+// psi_i is projected less a share of its ball's transmittance, the runtime adding
+// it back exactly; the share that leaves the least of psi_i outside the SH bands
+// is chosen per sample.
 ProjectionResult projectAttenuation(const VolumeObject& object, const std::vector<Vec3>& positions,
-                                    const ProjectionSettings& settings, int channels);
+                                    const std::vector<BoundaryBall>& balls, const ProjectionSettings& settings,
+                                    int channels);
 
 }  // namespace lucent

@@ -130,7 +130,9 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
     double nearestSurface = kInfinity;
     std::vector<Crossing> cs;
     for (const auto& o : objects_) {
-        o.boundary().insideIntervals(origin, dir, tStop, inside);
+        // Whether the eye is inside, asked once per ray, lets a ray that grazes an
+        // edge keep its parity (core/mesh_raycaster.cpp).
+        o.boundary().insideIntervals(origin, dir, tStop, inside, o.boundary().contains(origin));
         for (const Interval& s : inside) segments.push_back({&o, s});
         if (settings.surface && scene_.render.surface && o.desc().surface) {
             o.boundary().crossings(origin, dir, cs);

@@ -5,19 +5,26 @@
 #include "core/error.h"
 
 namespace lucent {
+namespace {
+constexpr size_t kVec4PerSample = 6;  // struct Sample of shaders/sample_light.glsl
+}  // namespace
 
 GpuSamples::GpuSamples(const SampleSet& samples)
     : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
       parameters_(samples.parameters) {
     if (samples.shOrder > 8) throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most 8");
     // struct Sample of shaders/sample_light.glsl
-    std::vector<glm::vec4> packed(5 * count_);
+    std::vector<glm::vec4> packed(kVec4PerSample * count_);
     for (size_t i = 0; i < count_; ++i) {
-        packed[5 * i] = glm::vec4(samples.positions[i], samples.widths[i]);
-        packed[5 * i + 1] = glm::vec4(samples.scattering[i], 0.0f);
-        packed[5 * i + 2] = glm::vec4(samples.extinction[i], 0.0f);
-        packed[5 * i + 3] = glm::vec4(samples.region[i], 0.0f, 0.0f);
-        packed[5 * i + 4] = glm::vec4(samples.image[i], 0.0f);
+        packed[kVec4PerSample * i + 0] = glm::vec4(samples.positions[i], samples.widths[i]);
+        packed[kVec4PerSample * i + 1] = glm::vec4(samples.scattering[i], 0.0f);
+        packed[kVec4PerSample * i + 2] = glm::vec4(samples.extinction[i], 0.0f);
+        packed[kVec4PerSample * i + 3] = glm::vec4(samples.region[i], 0.0f, 0.0f);
+        packed[kVec4PerSample * i + 4] = glm::vec4(samples.image[i], 0.0f);
+        const BoundaryBall& ball = samples.boundary[i];
+        packed[kVec4PerSample * i + 5] = glm::vec4(ball.normal, ball.depth);
+        packed[kVec4PerSample * i + 3].z = ball.curvature;
+        packed[kVec4PerSample * i + 3].w = ball.share;
     }
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);

@@ -5,8 +5,9 @@ struct Sample {
     vec4 centreWidth;  // world-space centre, Gaussian standard deviation
     vec4 scattering;   // sigma_s times the partition-of-unity weight, per channel
     vec4 extinction;   // sigma_t at the centre, per channel
-    vec4 region;       // [lo, hi] of its density slab along regionAxis
+    vec4 region;       // [lo, hi] of its density slab along regionAxis; the ball's curvature, share
     vec4 image;        // the centre mirrored across the nearest boundary of its region
+    vec4 ball;         // its boundary ball (core/sample_set.h): outward normal, depth (< 0: none)
 };
 layout(std430, binding = 0) readonly buffer Samples { Sample samples[]; };
 struct Light {
@@ -25,9 +26,31 @@ uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi become
 const float PI = 3.14159265358979;
 uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
-// psi_i(d) per channel, clamped to the range a transmittance can take: the SH
-// expansion (real SH with the Condon-Shortley phase, as core/spherical_harmonics.cpp)
-// summed on the fly, without storing the basis.
+// Distance out of the sample's boundary ball along d (preprocess/sh_projection.cpp,
+// ballExitDistance), negative when d never leaves it.
+float ballExitDistance(int sampleIndex, vec3 d) {
+    vec4 ball = samples[sampleIndex].ball;
+    float cosine = dot(d, ball.xyz), depth = ball.w, curvature = samples[sampleIndex].region.z;
+    if (curvature <= 0.0) return cosine > 0.0 ? depth / cosine : -1.0;
+    float kd = min(curvature * depth, 1.0);
+    float a = (1.0 - kd) * cosine, b = kd * (2.0 - kd);
+    float root = sqrt(a * a + b);
+    if (a >= 0.0) return a + root > 0.0 ? depth * (2.0 - kd) / (a + root) : -1.0;
+    return (root - a) / curvature;
+}
+
+// Its share of the ball's transmittance along d: the part of psi_i the SH do not hold.
+vec3 ballTransmittance(int sampleIndex, vec3 d) {
+    float share = samples[sampleIndex].region.w;
+    if (samples[sampleIndex].ball.w < 0.0 || share <= 0.0) return vec3(0.0);
+    float s = ballExitDistance(sampleIndex, d);
+    return s < 0.0 ? vec3(0.0) : share * exp(-samples[sampleIndex].extinction.rgb * s);
+}
+
+// psi_i(d) per channel, clamped to the range a transmittance can take: the
+// half-space transmittance plus the SH expansion of the rest (real SH with the
+// Condon-Shortley phase, as core/spherical_harmonics.cpp) summed on the fly,
+// without storing the basis.
 vec3 attenuation(int sampleIndex, vec3 d) {
     int n = shOrder * shOrder;
     int base = sampleIndex * channels * n;
@@ -64,13 +87,33 @@ vec3 attenuation(int sampleIndex, vec3 d) {
         qmm *= -(2.0 * m + 1.0);
     }
     if (channels == 1) psi = vec3(psi.r);
-    psi = clamp(psi, 0.0, 1.0);
+    psi = clamp(psi + ballTransmittance(sampleIndex, d), 0.0, 1.0);
     return extinctionScale == 1.0 ? psi : pow(psi, vec3(extinctionScale));
 }
 
 float henyeyGreenstein(float cosTheta) {
     float denom = max(1.0 + g * g - 2.0 * g * cosTheta, 1e-6);
     return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
+}
+
+// Minus the gradient of the path length to the boundary along w, the direction
+// in which the optical depth towards that light falls fastest, per unit sigma_t.
+// Out of the boundary ball, through the point e where w leaves it, it is
+// m / (w . m) with m the ball's normal at e: at grazing light the light falls off
+// with depth far faster than along w. The part of psi the SH hold has an unknown
+// exit, and takes w, the derivative only along w. The two are weighted by their
+// share of psi (the log-gradient of a sum).
+vec3 pathGradient(int i, vec3 w, float psi) {
+    vec4 ball = samples[i].ball;
+    float s = ballExitDistance(i, w);
+    if (ball.w < 0.0 || s < 0.0 || psi <= 0.0) return w;
+    // m at e = b + s w: from the ball's centre b + (1/curvature - depth) (-n), or n when flat.
+    float curvature = samples[i].region.z;
+    vec3 m = curvature > 0.0 ? normalize((1.0 - curvature * ball.w) * ball.xyz + curvature * s * w) : ball.xyz;
+    float cosine = max(dot(w, m), 0.05);
+    float own = ballTransmittance(i, w).r;
+    if (extinctionScale != 1.0) own = pow(own, extinctionScale);
+    return mix(w, m / cosine, clamp(own / psi, 0.0, 1.0));
 }
 
 // What a sample receives from the lights: the light at its centre, and how it
@@ -108,10 +151,11 @@ Received receivedLight(int i, vec3 toCamera) {
         }
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
-        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * attenuation(i, toLight);
+        vec3 psi = attenuation(i, toLight);
+        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;
         received += light;
-        toward += share * toLight;
+        toward += share * pathGradient(i, toLight, psi.r);
         falloff += share * 2.0 * inverseDistance * toLight;
         total += share;
     }

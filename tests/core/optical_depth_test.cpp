@@ -108,3 +108,42 @@ TEST(OpticalDepth, LayeredMediumAlongTheAxis) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// Rays from an eye outside a box, aimed at points on its edges and corners: in
+// single precision some report only one of the two faces they graze. The parts
+// inside must still lie between the box's near and far planes, never run back
+// to the eye (a lone exit once made the whole stretch from the eye count).
+TEST(OpticalDepth, RaysGrazingEdgesKeepTheirParity) {
+    test::ScratchDir dir;
+    const auto mesh = dir.write("box.obj", boxObj(Vec3(-1), Vec3(1)));
+    std::vector<std::string> warnings;
+    const VolumeObject box(test::simpleObject(mesh, 1.0), warnings);
+    const Vec3 eye(3.5, 2.0, 4.5);
+    std::vector<Interval> inside;
+    Rng rng(7, 0);
+    int grazing = 0;
+    for (int i = 0; i < 20000; ++i) {
+        // A point on one of the 12 edges.
+        Vec3 p(2.0 * rng.uniform() - 1.0);
+        const int axis = i % 3;
+        const int corner = (i / 3) % 4;
+        p[(axis + 1) % 3] = (corner & 1) ? 1.0 : -1.0;
+        p[(axis + 2) % 3] = (corner & 2) ? 1.0 : -1.0;
+        const Vec3 d = glm::normalize(p - eye);
+        box.boundary().insideIntervals(eye, d, kInfinity, inside, false);
+        double length = 0.0;
+        for (const Interval& s : inside) {
+            EXPECT_GT(s.t0, 0.5) << "ray " << i;
+            length += s.t1 - s.t0;
+        }
+        EXPECT_LE(length, 2.0 * std::sqrt(3.0) + 1e-6) << "ray " << i;
+        grazing += inside.empty() ? 1 : 0;
+    }
+    EXPECT_GT(grazing, 0);  // some do graze
+}
+
+}  // namespace
+}  // namespace lucent

@@ -26,6 +26,12 @@ SampleSet makeSamples(size_t n, uint32_t channels = 3) {
         s.extinction.emplace_back(2.0f, 3.0f, 4.0f);
         s.region.emplace_back(-1.0f, 0.5f + float(i));
         s.image.emplace_back(float(i), 1.5f, -0.25f);
+        BoundaryBall ball;
+        ball.normal = glm::vec3(0.0f, 0.6f, 0.8f);
+        ball.depth = 0.1f * float(i);
+        ball.curvature = 0.5f;
+        ball.share = 0.25f;
+        s.boundary.push_back(ball);
         for (size_t k = 0; k < s.coefficientsPerSample(); ++k) s.sh.push_back(float(i * 100 + k));
         s.truncationError.push_back(0.01f);
     }
@@ -66,6 +72,11 @@ TEST(SampleFile, RoundTrips) {
     EXPECT_EQ(r.extinction, s.extinction);
     EXPECT_EQ(r.region, s.region);
     EXPECT_EQ(r.image, s.image);
+    ASSERT_EQ(r.boundary.size(), s.boundary.size());
+    EXPECT_EQ(r.boundary[2].normal, s.boundary[2].normal);
+    EXPECT_EQ(r.boundary[2].depth, s.boundary[2].depth);
+    EXPECT_EQ(r.boundary[2].curvature, s.boundary[2].curvature);
+    EXPECT_EQ(r.boundary[2].share, s.boundary[2].share);
     EXPECT_EQ(r.bounds.max, Vec3(2));
     // No temporary file is left next to it.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
@@ -98,6 +109,18 @@ TEST(SampleFile, RejectsDamagedFiles) {
     grown.push_back(0);
     EXPECT_NE(damaged("grown.lsf", grown).find("counts need"), std::string::npos);
     EXPECT_NE(readError(dir.path() / "absent.lsf").find("cannot open sample file"), std::string::npos);
+}
+
+TEST(SampleFile, RejectsInvalidBoundaryBalls) {
+    test::ScratchDir dir;
+    SampleSet s = makeSamples(3);
+    s.boundary[1].share = 1.5f;
+    writeSampleFile(dir.path() / "share.lsf", s);
+    EXPECT_NE(readError(dir.path() / "share.lsf").find("invalid boundary ball"), std::string::npos);
+    s = makeSamples(3);
+    s.boundary[2].normal = glm::vec3(0.0f, 0.0f, 2.0f);
+    writeSampleFile(dir.path() / "normal.lsf", s);
+    EXPECT_NE(readError(dir.path() / "normal.lsf").find("invalid boundary ball"), std::string::npos);
 }
 
 TEST(SampleFile, RejectsNegativeCoefficientsAndEmptyRegions) {
