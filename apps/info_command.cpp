@@ -40,21 +40,27 @@ Command addInfoCommand(CLI::App& app) {
         std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
         std::printf("  cull epsilon           %g\n", p.cullEpsilon);
         std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)" : "lucent");
-        Stats radius, width, sigmaS, dc, error;
+        Stats radius, width, sigmaS, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();
         for (size_t i = 0; i < s.size(); ++i) {
             radius.add(s.radii[i]);
             width.add(s.widths[i]);
             sigmaS.add(s.scattering[i].g);  // times the sample's weight
-            // Y_00 = 1 / (2 sqrt(pi)): the mean of exp(-tau) over directions is c_00 / (2 sqrt(pi)).
+            // Y_00 = 1 / (2 sqrt(pi)): the mean over directions of what the SH hold is c_00 / (2 sqrt(pi)).
             dc.add(s.sh[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
             error.add(s.truncationError[i]);
+            if (s.boundary[i].valid()) {
+                share.add(s.boundary[i].share);
+                curvature.add(s.boundary[i].curvature);
+            }
         }
         radius.print("Poisson radius");
         width.print("Gaussian sigma");
         sigmaS.print("w sigma_s (green)");
-        dc.print("mean transmittance");
-        error.print("SH truncation error");
+        dc.print("SH mean");
+        share.print("boundary ball share");
+        curvature.print("boundary curvature");
+        error.print("missed by ball and SH");
     };
 }
 
