@@ -17,7 +17,9 @@ namespace lucent {
 // weights by share of volume, the light at the centre held constant over the
 // Gaussian). Lucent: the first layer half a spacing down, Galerkin
 // partition-of-unity weights restricted to the inside, the Gaussians clipped to
-// their density slab, and the light varying exponentially across each Gaussian.
+// their density slab, the light varying exponentially across each Gaussian, and
+// psi projected with the blockers filled by the medium, their shadows left to
+// the runtime (runtime/blocker_shadows.h).
 enum class SampleScheme : uint32_t { Lucent = 0, Published = 1 };
 inline constexpr uint32_t kNoRegionAxis = 3;
 
@@ -69,7 +71,7 @@ struct SampleSet {
     size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
 };
 
-inline constexpr uint32_t kSampleFileVersion = 3;
+inline constexpr uint32_t kSampleFileVersion = 4;
 
 // Writes atomically (temporary file + rename).
 void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples);

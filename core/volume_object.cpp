@@ -64,6 +64,10 @@ double VolumeObject::firstBlockerHit(const Vec3& origin, const Vec3& dir) const 
 
 double VolumeObject::densityPath(const Vec3& origin, const Vec3& dir, double tMax) const {
     if (!blockers_.empty() && firstBlockerHit(origin, dir) < tMax) return kInfinity;
+    return densityPathThroughBlockers(origin, dir, tMax);
+}
+
+double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax) const {
     thread_local std::vector<Interval> inside;
     boundary_.insideIntervals(origin, dir, tMax, inside);
     double path = 0.0;

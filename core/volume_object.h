@@ -28,6 +28,9 @@ public:
     // inside the object; infinity when a blocker lies in the way. With
     // tMax = infinity this is the path to the boundary through every crossing.
     double densityPath(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
+    // The same path with the blockers filled by the medium around them: what the
+    // Lucent scheme projects, leaving the blockers' hard shadows to the runtime.
+    double densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
 
     bool contains(const Vec3& p) const { return boundary_.contains(p); }
     const std::vector<TriangleMesh>& blockerMeshes() const { return blockerMeshes_; }

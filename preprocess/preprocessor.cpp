@@ -321,6 +321,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     projection.order = settings.shOrder;
     projection.directions = settings.projectionDirections;
     projection.seed = settings.seed;
+    projection.shadowBlockersAtRuntime = !published;
     ProjectionResult projected =
         projectAttenuation(object, positions, set.boundary, projection, int(set.channels));
     set.sh = std::move(projected.coefficients);

@@ -72,7 +72,9 @@ ProjectionResult projectAttenuation(const VolumeObject& object, const std::vecto
         };
         for (size_t i = range.begin(); i < range.end(); ++i) {
             for (size_t d = 0; d < D; ++d) {
-                const Rgb t = transmittance(sigmaT, object.densityPath(positions[i], lattice[d]));
+                const Rgb t = transmittance(sigmaT, settings.shadowBlockersAtRuntime
+                                                        ? object.densityPathThroughBlockers(positions[i], lattice[d])
+                                                        : object.densityPath(positions[i], lattice[d]));
                 for (size_t c = 0; c < C; ++c) psi[d * C + c] = t[c];
             }
             project(psi, psiCoefficients, psiRest);

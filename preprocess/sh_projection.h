@@ -16,6 +16,10 @@ struct ProjectionSettings {
     int order = 5;          // bands; order^2 coefficients per channel
     int directions = 256;
     uint64_t seed = 1;
+    // Project psi with the blockers filled by the medium (smooth, so few bands
+    // hold it) and leave their shadows to the runtime (the Lucent scheme), rather
+    // than with their hard shadows in psi (the published scheme).
+    bool shadowBlockersAtRuntime = false;
 };
 
 struct ProjectionResult {

@@ -13,4 +13,5 @@ extern const char* const tonemap_frag;
 extern const char* const segment_frag;
 extern const char* const sample_light_glsl;
 extern const char* const received_comp;
+extern const char* const blocker_distance_frag;
 }  // namespace lucent::shaders

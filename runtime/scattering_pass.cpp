@@ -25,6 +25,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
         packed[kVec4PerSample * i + 5] = glm::vec4(ball.normal, ball.depth);
         packed[kVec4PerSample * i + 3].z = ball.curvature;
         packed[kVec4PerSample * i + 3].w = ball.share;
+        homogeneous_ = homogeneous_ && samples.extinction[i] == samples.extinction[0];
     }
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);

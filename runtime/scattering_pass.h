@@ -27,12 +27,14 @@ public:
     int channels() const { return channels_; }
     size_t size() const { return count_; }
     const SampleParameters& parameters() const { return parameters_; }
+    bool homogeneous() const { return homogeneous_; }
 
 private:
     GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
     size_t count_ = 0;
     int shOrder_ = 0, channels_ = 1;
     SampleParameters parameters_;
+    bool homogeneous_ = true;
 };
 
 }  // namespace lucent

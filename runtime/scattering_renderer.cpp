@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/mesh_raycaster.h"
+#include "runtime/blocker_shadows.h"
 #include "runtime/embedded_shaders.h"
 #include "runtime/gl_program.h"
 #include "runtime/mesh_pass.h"
@@ -97,7 +98,12 @@ struct Object {
     std::optional<SurfaceDesc> surface;
     std::vector<std::unique_ptr<GpuMesh>> blockers;
     std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside?
+    std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
+    bool shadowsValid = false;
 };
+
+// Texture unit of the blocker shadow maps in both sample programs (unit 0 holds the ray segments).
+constexpr GLuint kShadowUnit = 1;
 
 }  // namespace
 
@@ -120,14 +126,17 @@ struct ScatteringRenderer::Impl {
     std::vector<Object> objects;
     GLuint lightBuffer = 0;
     int lightCount = 0;
+    std::vector<Light> lights;
     TextureTarget front{GL_DEPTH_COMPONENT32F}, back{GL_DEPTH_COMPONENT32F}, host{GL_DEPTH_COMPONENT32F};
     TextureTarget segments{GL_RG32F};
     GLuint emptyVao = 0;
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
         glCreateVertexArrays(1, &emptyVao);
-        setShNormalisation(scatterProgram);
-        setShNormalisation(receivedProgram);
+        for (const GlProgram* p : {&scatterProgram, &receivedProgram}) {
+            setShNormalisation(*p);
+            glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(kShadowUnit));
+        }
     }
     ~Impl() {
         front.release();
@@ -152,8 +161,10 @@ ScatteringRenderer::~ScatteringRenderer() = default;
 
 void ScatteringRenderer::addObject(const TranslucentObject& object) {
     Object o{std::make_unique<GpuMesh>(*object.mesh), std::make_unique<GpuSamples>(*object.samples), object.g,
-             object.surface, {}, std::make_unique<MeshRaycaster>(*object.mesh)};
+             object.surface, {}, std::make_unique<MeshRaycaster>(*object.mesh), nullptr};
     for (const TriangleMesh* blocker : object.blockers) o.blockers.push_back(std::make_unique<GpuMesh>(*blocker));
+    if (!object.blockers.empty() && object.samples->parameters.scheme == SampleScheme::Lucent)
+        o.shadows = std::make_unique<BlockerShadows>(object.blockers);
     impl_->objects.push_back(std::move(o));
 }
 
@@ -175,7 +186,11 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     glNamedBufferStorage(impl_->lightBuffer, GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
                          packed.empty() ? nullptr : packed.data(), 0);
     impl_->lightCount = int(lights.size());
-    for (Object& o : impl_->objects) o.samples->receivedValid = false;
+    impl_->lights = lights;
+    for (Object& o : impl_->objects) {
+        o.samples->receivedValid = false;
+        o.shadowsValid = false;
+    }
 }
 
 void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {
@@ -183,6 +198,11 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
     const glm::mat4 viewProjection = view.projection * view.view;
+    for (Object& o : r.objects)
+        if (o.shadows && !o.shadowsValid) {
+            o.shadows->render(r.lights);
+            o.shadowsValid = true;
+        }
     r.front.resize(view.width, view.height);
     r.back.resize(view.width, view.height);
     r.host.resize(view.width, view.height);
@@ -304,6 +324,9 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glUniform1i(p.uniform("raySegments"), 0);
         for (const Object& o : r.objects) {
             o.samples->bind();
+            if (o.shadows) o.shadows->bind(kShadowUnit);
+            for (const GlProgram* program : {&r.scatterProgram, &r.receivedProgram})
+                glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
             // Isotropic media: the received light does not depend on the view, so it
             // is computed when the lights or the medium scale change, not every frame.
             const bool cache = o.g == 0.0;
@@ -326,6 +349,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
             glUniform1i(p.uniform("channels"), o.samples->channels());
             glUniform1f(p.uniform("g"), float(o.g));
             glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
+            glUniform1i(p.uniform("homogeneous"), o.samples->homogeneous() ? 1 : 0);
             glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
             o.samples->draw();
         }

@@ -24,6 +24,53 @@ uniform float g;       // Henyey-Greenstein mean cosine
 uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi becomes psi^k
 
 const float PI = 3.14159265358979;
+
+// Blocker shadows (runtime/blocker_shadows.h), for samples whose psi leaves the
+// blockers out: per light j, layers 6j..6j+5 hold the distance along its rays to
+// the nearest blocker, with each layer's view-projection in shadowViews.
+uniform bool blockerShadows;
+uniform sampler2DArray shadowDistances;
+layout(std430, binding = 4) readonly buffer ShadowViews { mat4 shadowViews[]; };
+
+// How far along light j's rays x lies, as blocker_distance.frag measures it.
+float distanceAlongLight(int j, vec3 x) {
+    vec4 l = lights[j].position;
+    return l.w > 0.5 ? distance(x, l.xyz) : dot(x, l.xyz);
+}
+
+// The fraction of light j that reaches x past the blockers. A 2x2 percentage-
+// closer filter moves the shadow's edge smoothly between texels; the bias of two
+// texels keeps a sample in front of a blocker lit however steeply the blocker's
+// surface faces away from the light within one texel.
+float blockerVisibility(int j, vec3 x) {
+    if (!blockerShadows) return 1.0;
+    vec4 l = lights[j].position;
+    int layer = 6 * j;
+    if (l.w > 0.5) {
+        vec3 d = x - l.xyz, a = abs(d);
+        int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+        layer += 2 * axis + (d[axis] < 0.0 ? 1 : 0);
+    }
+    mat4 m = shadowViews[layer];
+    vec4 clip = m * vec4(x, 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+    ivec2 size = textureSize(shadowDistances, 0).xy;
+    float own = distanceAlongLight(j, x);
+    // World size of a texel: the map spans 2 / |row 0| at unit distance (point) or in all (directional).
+    float texel = 2.0 / (float(size.x) * length(vec3(m[0][0], m[1][0], m[2][0])));
+    float bias = 2.0 * texel * (l.w > 0.5 ? own : 1.0);
+    vec2 st = uv * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(st));
+    vec2 f = st - vec2(base);
+    float lit[4];
+    for (int k = 0; k < 4; ++k) {
+        ivec2 p = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
+        lit[k] = own <= texelFetch(shadowDistances, ivec3(p, layer), 0).r + bias ? 1.0 : 0.0;
+    }
+    return mix(mix(lit[0], lit[1], f.x), mix(lit[2], lit[3], f.x), f.y);
+}
 uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
 // Distance out of the sample's boundary ball along d (preprocess/sh_projection.cpp,
@@ -149,6 +196,7 @@ Received receivedLight(int i, vec3 toCamera) {
         } else {
             toLight = -lights[j].position.xyz;
         }
+        irradiance *= blockerVisibility(j, centre);
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
         vec3 psi = attenuation(i, toLight);
