@@ -1,5 +1,7 @@
 #include "runtime/scattering_pass.h"
 
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -27,6 +29,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
         packed[kVec4PerSample * i + 3].w = ball.share;
         homogeneous_ = homogeneous_ && samples.extinction[i] == samples.extinction[0];
     }
+    if (parameters_.regionAxis < kNoRegionAxis && !homogeneous_) findSlabs(samples);
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);
     glNamedBufferStorage(buffers_[0], GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(glm::vec4)),
@@ -35,6 +38,20 @@ GpuSamples::GpuSamples(const SampleSet& samples)
                          samples.sh.empty() ? nullptr : samples.sh.data(), 0);
     // struct Received of shaders/sample_light.glsl
     glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * 3 * sizeof(glm::vec4)), nullptr, 0);
+}
+
+void GpuSamples::findSlabs(const SampleSet& samples) {
+    std::map<std::pair<float, float>, glm::vec3> slabs;
+    for (size_t i = 0; i < count_; ++i) {
+        const auto [it, inserted] = slabs.emplace(std::make_pair(samples.region[i].x, samples.region[i].y), samples.extinction[i]);
+        // A density that varies inside a slab (not layers): no table.
+        if (!inserted && it->second != samples.extinction[i]) return;
+        if (slabs.size() > kMaxSlabs) return;
+    }
+    for (const auto& [bounds, extinction] : slabs) {
+        slabBounds_.emplace_back(bounds.first, bounds.second, 0.0f, 0.0f);
+        slabExtinction_.emplace_back(extinction, 0.0f);
+    }
 }
 
 GpuSamples::~GpuSamples() {

@@ -2,6 +2,8 @@
 // A sample set on the GPU: centres, widths, weighted scattering and extinction
 // coefficients, density-slab regions and SH coefficients in shader storage
 // buffers, one point per sample.
+#include <vector>
+
 #include "core/sample_set.h"
 #include "runtime/gl.h"
 
@@ -27,14 +29,22 @@ public:
     int channels() const { return channels_; }
     size_t size() const { return count_; }
     const SampleParameters& parameters() const { return parameters_; }
+    // sigma_t is one constant: the attenuation towards the camera is exp(-sigma_t distance).
     bool homogeneous() const { return homogeneous_; }
+    // The density slabs along parameters().regionAxis, when sigma_t is constant in
+    // each: per slab [lo, hi, 0, 0] and [sigma_t rgb, 0], at most kMaxSlabs (else empty).
+    static constexpr size_t kMaxSlabs = 16;
+    const std::vector<glm::vec4>& slabBounds() const { return slabBounds_; }
+    const std::vector<glm::vec4>& slabExtinction() const { return slabExtinction_; }
 
 private:
+    void findSlabs(const SampleSet& samples);
     GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
     size_t count_ = 0;
     int shOrder_ = 0, channels_ = 1;
     SampleParameters parameters_;
     bool homogeneous_ = true;
+    std::vector<glm::vec4> slabBounds_, slabExtinction_;
 };
 
 }  // namespace lucent

@@ -349,7 +349,15 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
             glUniform1i(p.uniform("channels"), o.samples->channels());
             glUniform1f(p.uniform("g"), float(o.g));
             glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
-            glUniform1i(p.uniform("homogeneous"), o.samples->homogeneous() ? 1 : 0);
+            const auto& slabs = o.samples->slabBounds();
+            glUniform1i(p.uniform("exactViewAttenuation"), o.samples->homogeneous() || !slabs.empty() ? 1 : 0);
+            glUniform1i(p.uniform("slabCount"), GLint(slabs.size()));
+            if (!slabs.empty()) {
+                glUniform4fv(p.uniform("slabBounds"), GLsizei(slabs.size()), glm::value_ptr(slabs[0]));
+                std::vector<glm::vec4> extinction = o.samples->slabExtinction();
+                for (glm::vec4& e : extinction) e *= options.extinctionScale;
+                glUniform4fv(p.uniform("slabExtinction"), GLsizei(slabs.size()), glm::value_ptr(extinction[0]));
+            }
             glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
             o.samples->draw();
         }

@@ -21,6 +21,11 @@ uniform vec3 cameraPosition;
 uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
 uniform int channels;           // 1: one gradient serves all three channels
 uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
+// The density slabs along regionAxis (runtime/scattering_pass.h), when sigma_t is
+// constant in each: [lo, hi] and sigma_t.
+uniform int slabCount;
+uniform vec4 slabBounds[16];
+uniform vec4 slabExtinction[16];
 
 out vec4 colour;
 
@@ -69,20 +74,38 @@ float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, flo
     return gaussianSegment(f.viewCentre + gradient * s2, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
 }
 
+// The ray's parameter interval inside [lo, hi] along regionAxis.
+vec2 slabInterval(vec2 bounds, float origin, float direction) {
+    if (abs(direction) < 1e-20) return origin >= bounds.x && origin <= bounds.y ? vec2(-1e30, 1e30) : vec2(1e30, -1e30);
+    float ta = (bounds.x - origin) / direction, tb = (bounds.y - origin) / direction;
+    return vec2(min(ta, tb), max(ta, tb));
+}
+
+// The optical depth from the front face to where the ray enters the sample's
+// slab, less the sample's own sigma_t over that distance: what the other slabs
+// take beyond what exp(-sigma_t (t - t0)) assumes (0 in a single slab).
+vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
+    vec3 depth = vec3(0.0);
+    for (int k = 0; k < slabCount; ++k) {
+        vec2 span = slabInterval(slabBounds[k].xy, origin, direction);
+        float inside = min(entry, span.y) - max(front, span.x);
+        if (inside > 0.0) depth += (slabExtinction[k].rgb - f.extinction) * inside;
+    }
+    return depth;
+}
+
 void main() {
     vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
     float t0 = segment.x, t1 = segment.y;
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
+    vec3 slabsBefore = vec3(0.0);
     if (regionAxis < 3) {
         // The part of the ray inside the sample's density slab.
         float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
-        if (abs(d) < 1e-20) {
-            if (o < f.region.x || o > f.region.y) discard;
-        } else {
-            float ta = (f.region.x - o) / d, tb = (f.region.y - o) / d;
-            t0 = max(t0, min(ta, tb));
-            t1 = min(t1, max(ta, tb));
-        }
+        vec2 span = slabInterval(f.region, o, d);
+        t0 = max(t0, span.x);
+        t1 = min(t1, span.y);
+        if (t1 > t0 && slabCount > 0 && f.viewDepth >= 0.0) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
     }
     if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
 
@@ -96,6 +119,7 @@ void main() {
     } else {
         integral.gb = integral.rr;
     }
+    integral *= exp(-slabsBefore);
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
     if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
                                   discardBelow * f.width * sqrt(2.0 * 3.14159265358979))

@@ -17,15 +17,18 @@
 // A Gaussian times an exponential is a Gaussian again, shifted and scaled, so the
 // line integral stays exact. In a homogeneous object the centre's own view
 // attenuation is exp(-sigma_t viewDepth) too, exact on convex objects where the
-// SH of a box's or a blocker's edges are not, so psi_i(w_view) is only used
-// where the density varies or the centre's ray is unknown.
+// SH of a box's or a blocker's edges are not; in slabs of constant density the
+// fragments add what the other slabs on the way take beyond that. So
+// psi_i(w_view) is only used where the density varies smoothly or the centre's
+// ray is unknown.
 uniform vec3 cameraPosition;
 uniform mat4 view;
 // With an isotropic phase function the received light does not depend on the
 // view: shaders/received.comp computes it when lights change, and frames reuse it.
 uniform bool receivedIsCached;
 layout(std430, binding = 3) readonly buffer ReceivedCache { Received cachedReceived[]; };
-uniform bool homogeneous;
+// sigma_t is constant, or constant in slabs that shaders/scatter.frag integrates through.
+uniform bool exactViewAttenuation;
 uniform bool lightVaries;  // false for the published scheme: v_i constant under the Gaussian
 uniform mat4 projection;
 uniform sampler2D raySegments;  // per pixel [t0, t1] (shaders/segment.frag)
@@ -66,7 +69,7 @@ void main() {
             if (segment.x >= 0.0) v.viewDepth = max(length(v.viewCentre) - segment.x, 0.0);
         }
     }
-    vec3 towardCamera = homogeneous && v.viewDepth >= 0.0 ? exp(-v.extinction * v.viewDepth) : attenuation(i, toCamera);
+    vec3 towardCamera = exactViewAttenuation && v.viewDepth >= 0.0 ? exp(-v.extinction * v.viewDepth) : attenuation(i, toCamera);
     v.radiance = extinctionScale * samples[i].scattering.rgb * received.light.rgb * towardCamera;
     for (int c = 0; c < 3; ++c) {
         vec3 g = vec3(0.0);

@@ -48,7 +48,7 @@ TEST_P(BundledScene, AgreesWithTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Models, BundledScene,
                          ::testing::Values(Bound{"cube", 0.075, 0.10}, Bound{"torus-cube", 0.12, 0.17},
-                                           Bound{"layered-cube", 0.18, 0.15}, Bound{"bunny", 0.13, 0.12}),
+                                           Bound{"layered-cube", 0.14, 0.13}, Bound{"bunny", 0.13, 0.12}),
                          [](const auto& info) {
                              std::string name = info.param.scene;
                              name.erase(std::remove(name.begin(), name.end(), '-'), name.end());
