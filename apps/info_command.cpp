@@ -39,7 +39,9 @@ Command addInfoCommand(CLI::App& app) {
         std::printf("  mean Poisson radius    %g\n", p.meanRadius);
         std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
         std::printf("  cull epsilon           %g\n", p.cullEpsilon);
-        std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)" : "lucent");
+        std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)"
+                    : p.scheme == SampleScheme::Skin ? "skin (optically thick: the surface's closed form, no samples)"
+                                                     : "lucent");
         Stats radius, width, sigmaS, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();
         for (size_t i = 0; i < s.size(); ++i) {

@@ -20,7 +20,10 @@ namespace lucent {
 // their density slab, the light varying exponentially across each Gaussian, and
 // psi projected with the blockers filled by the medium, their shadows left to
 // the runtime (runtime/blocker_shadows.h).
-enum class SampleScheme : uint32_t { Lucent = 0, Published = 1 };
+// Skin: the medium is optically thick at the scale of the samples (light dies
+// within a fraction of their spacing), there are none, and the runtime draws the
+// single scattering of the surface's sliver in closed form (shaders/skin.frag).
+enum class SampleScheme : uint32_t { Lucent = 0, Published = 1, Skin = 2 };
 inline constexpr uint32_t kNoRegionAxis = 3;
 
 struct SampleParameters {

@@ -14,4 +14,5 @@ extern const char* const segment_frag;
 extern const char* const sample_light_glsl;
 extern const char* const received_comp;
 extern const char* const blocker_distance_frag;
+extern const char* const skin_frag;
 }  // namespace lucent::shaders

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -16,7 +17,8 @@
 namespace lucent {
 
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples) {
-    TranslucentObject t{&object.mesh(), &samples, object.desc().medium.g, object.desc().surface, {}};
+    TranslucentObject t{&object.mesh(), &samples, object.desc().medium.g, object.desc().surface, {},
+                        object.desc().medium.albedo};
     for (const TriangleMesh& blocker : object.blockerMeshes()) t.blockers.push_back(&blocker);
     return t;
 }
@@ -100,6 +102,8 @@ struct Object {
     std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside?
     std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
     bool shadowsValid = false;
+    Rgb albedo{0.0};
+    bool skin = false;  // optically thick: drawn by shaders/skin.frag, no samples
 };
 
 // Texture unit of the blocker shadow maps in both sample programs (unit 0 holds the ray segments).
@@ -113,6 +117,8 @@ struct ScatteringRenderer::Impl {
                            {GL_FRAGMENT_SHADER, "shaders/depth_only.frag", shaders::depth_only_frag}};
     GlProgram surfaceProgram{{GL_VERTEX_SHADER, "shaders/mesh.vert", shaders::mesh_vert},
                              {GL_FRAGMENT_SHADER, "shaders/surface.frag", shaders::surface_frag}};
+    GlProgram skinProgram{{GL_VERTEX_SHADER, "shaders/mesh.vert", shaders::mesh_vert},
+                          {GL_FRAGMENT_SHADER, "shaders/skin.frag", shaders::skin_frag}};
     std::string scatterVertex = withSampleLight(shaders::scatter_vert);
     std::string receivedCompute = withSampleLight(shaders::received_comp);
     GlProgram scatterProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", scatterVertex.c_str()},
@@ -165,6 +171,8 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     for (const TriangleMesh* blocker : object.blockers) o.blockers.push_back(std::make_unique<GpuMesh>(*blocker));
     if (!object.blockers.empty() && object.samples->parameters.scheme == SampleScheme::Lucent)
         o.shadows = std::make_unique<BlockerShadows>(object.blockers);
+    o.albedo = object.albedo;
+    o.skin = object.samples->parameters.scheme == SampleScheme::Skin;
     impl_->objects.push_back(std::move(o));
 }
 
@@ -294,6 +302,28 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
             glUniform3fv(p.uniform("diffuse"), 1, glm::value_ptr(glm::vec3(o.surface->diffuse)));
             glUniform3fv(p.uniform("specular"), 1, glm::value_ptr(glm::vec3(o.surface->specular)));
             glUniform1f(p.uniform("shininess"), float(o.surface->shininess));
+            o.mesh->draw();
+        }
+    }
+
+    // Optically thick objects: the single scattering of the sliver under their
+    // surface, in closed form, tested against the host's depth like the surface.
+    if (options.scattering && std::any_of(r.objects.begin(), r.objects.end(), [](const Object& o) { return o.skin; })) {
+        const GlProgram& p = r.skinProgram;
+        glUseProgram(p.id());
+        glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniform1i(p.uniform("lightCount"), r.lightCount);
+        glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+        glBindTextureUnit(0, r.front.texture);
+        glUniform1i(p.uniform("frontDepth"), 0);
+        glDisable(GL_CULL_FACE);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        for (const Object& o : r.objects) {
+            if (!o.skin) continue;
+            glUniform3fv(p.uniform("albedo"), 1, glm::value_ptr(glm::vec3(o.albedo)));
+            glUniform1f(p.uniform("g"), float(o.g));
             o.mesh->draw();
         }
     }

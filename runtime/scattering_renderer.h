@@ -24,6 +24,7 @@ struct TranslucentObject {
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
+    Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::Skin)
 };
 
 // A scene object with its sample set, as the renderer takes it (both must outlive the renderer).

@@ -11,6 +11,7 @@ in GeometryOut {
     flat vec3 gradient[3];  // logarithmic gradient of the light per channel (shaders/scatter.vert)
     flat vec3 extinction;
     flat float viewDepth;   // < 0: the published scheme, or the centre is off screen
+    flat int viewFromFront; // 1: attenuate from this pixel's front face (viewDepth unused)
     flat vec2 region;
 } f;
 
@@ -55,20 +56,25 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
 
 // The sample's light along this pixel's ray x = t dir, on the Gaussian centred at
 // c (the sample's centre b, or its image): exp(G . (x - b)) towards the lights,
-// times the transmittance to the eye relative to the centre's,
+// times the transmittance to the eye. From this pixel's front face t0 it is
+// exp(-sigma_t (t - t0)) (viewFromFront), or relative to the centre's own,
 // exp(-sigma_t ((t - t0) - viewDepth)). Gathered as exp(G' . (x - c)) times
-// exp(G . (c - b) + sigma_t (viewDepth - (dir . c - t0))), G' = G - sigma_t dir;
+// exp(G . (c - b) - sigma_t (dir . c - t0) [+ sigma_t viewDepth]), G' = G - sigma_t dir;
 // and a Gaussian times exp(G' . (x - c)) is exp(|G'|^2 s^2 / 2) times the Gaussian
-// centred at c + G' s^2.
-float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1) {
+// centred at c + G' s^2. Every exponent is summed before any exp (gaussianSegment).
+float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1, float logOffset) {
     float s2 = f.width * f.width;
-    float logScale = dot(gradient, f.anchorOffset);
-    if (f.viewDepth >= 0.0) {
+    float logScale = dot(gradient, f.anchorOffset) + logOffset;
+    if (f.viewFromFront == 1) {
+        logScale -= extinction * (dot(dir, f.viewCentre) - front);
+        gradient -= extinction * dir;
+    } else if (f.viewDepth >= 0.0) {
         // Where the front face jumps (a concave object's silhouette in front of
         // another part of it) this pixel's front says nothing about the centre's
-        // ray: beyond two widths of difference the correction stops growing.
+        // ray: beyond two widths, or a factor e^2, the correction stops growing.
         float shift = f.viewDepth - (dot(dir, f.viewCentre - f.anchorOffset) - front);
-        logScale += extinction * (clamp(shift, -2.0 * f.width, 2.0 * f.width) - dot(dir, f.anchorOffset));
+        float limit = min(2.0 * f.width, 2.0 / max(extinction, 1e-30));
+        logScale += extinction * (clamp(shift, -limit, limit) - dot(dir, f.anchorOffset));
         gradient -= extinction * dir;
     }
     return gaussianSegment(f.viewCentre + gradient * s2, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
@@ -105,21 +111,20 @@ void main() {
         vec2 span = slabInterval(f.region, o, d);
         t0 = max(t0, span.x);
         t1 = min(t1, span.y);
-        if (t1 > t0 && slabCount > 0 && f.viewDepth >= 0.0) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
+        if (t1 > t0 && slabCount > 0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
     }
     if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
 
     vec3 integral;
     // t0 of this pixel's own ray: the view transmittance starts at its front face.
     float front = segment.x;
-    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1);
+    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
     if (channels == 3) {
-        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1);
-        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1);
+        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
+        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
     } else {
         integral.gb = integral.rr;
     }
-    integral *= exp(-slabsBefore);
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
     if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
                                   discardBelow * f.width * sqrt(2.0 * 3.14159265358979))

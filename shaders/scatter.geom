@@ -16,6 +16,7 @@ in VertexOut {
     vec3 gradient[3];
     vec3 extinction;
     float viewDepth;
+    int viewFromFront;
     vec2 region;
 } v[];
 
@@ -27,6 +28,7 @@ out GeometryOut {
     flat vec3 gradient[3];
     flat vec3 extinction;
     flat float viewDepth;
+    flat int viewFromFront;
     flat vec2 region;
 } o;
 
@@ -41,6 +43,7 @@ void emit(vec3 centre, vec4 clip) {
     o.gradient = v[0].gradient;
     o.extinction = v[0].extinction;
     o.viewDepth = v[0].viewDepth;
+    o.viewFromFront = v[0].viewFromFront;
     o.region = v[0].region;
     gl_Position = clip;
     EmitVertex();
@@ -74,9 +77,13 @@ void main() {
     if (max(v[0].radiance.r, max(v[0].radiance.g, v[0].radiance.b)) <= 0.0) return;
     float s = v[0].width;
     // The shift of shaders/scatter.frag, G s^2, is at most (|G_light| + sigma_t) s^2.
+    // Attenuated from the front face the view's part only ever falls inside, so
+    // the light's part alone can carry the integrand beyond the cut-off.
     float shift = 0.0;
-    if (v[0].viewDepth >= 0.0)
-        for (int k = 0; k < 3; ++k) shift = max(shift, (length(v[0].gradient[k]) + v[0].extinction[k]) * s * s);
+    for (int k = 0; k < 3; ++k) {
+        float view = v[0].viewDepth >= 0.0 ? v[0].extinction[k] : 0.0;
+        shift = max(shift, (length(v[0].gradient[k]) + view) * s * s);
+    }
     float r = cutoffSigmas * s + shift;
     square(v[0].viewCentre, r);
     // The boundary lies halfway to the image: past the cut-off, the image adds nothing inside.

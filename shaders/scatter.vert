@@ -15,12 +15,11 @@
 //   centre's own ray, whose front face lies viewDepth in front of the centre, it is
 //   psi_i(w_view) exp(-sigma_t ((t - t0) - viewDepth)) (shaders/scatter.frag).
 // A Gaussian times an exponential is a Gaussian again, shifted and scaled, so the
-// line integral stays exact. In a homogeneous object the centre's own view
-// attenuation is exp(-sigma_t viewDepth) too, exact on convex objects where the
-// SH of a box's or a blocker's edges are not; in slabs of constant density the
-// fragments add what the other slabs on the way take beyond that. So
-// psi_i(w_view) is only used where the density varies smoothly or the centre's
-// ray is unknown.
+// line integral stays exact. In a homogeneous object, or one of slabs of constant
+// density, the fragments need no psi_i(w_view) at all: they attenuate from their
+// own front face, exp(-sigma_t (t - t0)) plus what other slabs on the way take,
+// exact on convex objects where the SH of a box's or a blocker's edges are not.
+// psi_i(w_view) is only used where the density varies smoothly.
 uniform vec3 cameraPosition;
 uniform mat4 view;
 // With an isotropic phase function the received light does not depend on the
@@ -41,12 +40,33 @@ out VertexOut {
     vec3 gradient[3];  // towards the lights, view space, per channel
     vec3 extinction;
     float viewDepth;   // eye distance from the front face to the centre on the centre's ray; < 0: unknown
+    int viewFromFront; // 1: the fragments attenuate from their own front face, exactly (viewDepth unused)
     vec2 region;
 } v;
 
-// |G| s beyond this extrapolates the exponential past where the centre's light
-// says anything about it (the light then changes by e^3 within one sigma).
-const float kMaxGradientTimesWidth = 3.0;
+// The light may grow across the Gaussian only by what the medium took on its way
+// in: the largest value of exp(G . (x - b)) times the Gaussian, over the half-space
+// under the sample's boundary ball's tangent plane, stays below e^kGainSlack / T,
+// T = light / unattenuated. Under a plane this leaves the exact gradient
+// sigma_t n / cos untouched, however dense the medium; where the linear exponent
+// would overshoot (curved boundaries at grazing light) it stops growing.
+const float kGainSlack = 3.0;
+
+// max over x with (x - b) . n <= depth of G . (x - b) - |x - b|^2 / (2 s^2).
+float largestExponent(vec3 g, vec3 n, float depth, float s) {
+    float s2 = s * s, normal = dot(g, n);
+    float across = 0.5 * dot(g - normal * n, g - normal * n) * s2;
+    if (normal <= 0.0) return across;
+    return across + (normal * s2 <= depth ? 0.5 * normal * normal * s2 : normal * depth - 0.5 * depth * depth / s2);
+}
+
+vec3 boundedGradient(vec3 g, int i, float s, float transmittance) {
+    vec4 ball = samples[i].ball;
+    float largest = ball.w >= 0.0 ? largestExponent(g, ball.xyz, ball.w, s) : 0.5 * dot(g, g) * s * s;
+    float limit = kGainSlack - log(clamp(transmittance, 1e-30, 1.0));
+    // Scaling G by l < 1 scales that maximum by at most l.
+    return largest > limit ? g * (limit / largest) : g;
+}
 
 void main() {
     int i = gl_VertexID;
@@ -60,8 +80,9 @@ void main() {
     v.region = samples[i].region.xy;
     v.extinction = extinctionScale * samples[i].extinction.rgb;
     v.viewDepth = -1.0;
+    v.viewFromFront = lightVaries && exactViewAttenuation ? 1 : 0;
     vec4 clip = projection * vec4(v.viewCentre, 1.0);
-    if (lightVaries && clip.w > 0.0) {
+    if (lightVaries && v.viewFromFront == 0 && clip.w > 0.0) {
         ivec2 size = textureSize(raySegments, 0);
         vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size);
         if (all(greaterThanEqual(pixel, vec2(0.0))) && all(lessThan(pixel, vec2(size)))) {
@@ -69,14 +90,14 @@ void main() {
             if (segment.x >= 0.0) v.viewDepth = max(length(v.viewCentre) - segment.x, 0.0);
         }
     }
-    vec3 towardCamera = exactViewAttenuation && v.viewDepth >= 0.0 ? exp(-v.extinction * v.viewDepth) : attenuation(i, toCamera);
+    vec3 towardCamera = v.viewFromFront == 1 ? vec3(1.0) : attenuation(i, toCamera);
     v.radiance = extinctionScale * samples[i].scattering.rgb * received.light.rgb * towardCamera;
     for (int c = 0; c < 3; ++c) {
         vec3 g = vec3(0.0);
         if (lightVaries) {
             g = v.extinction[c] * received.towardLights.xyz + received.falloff.xyz;
-            float reach = length(g) * s;
-            if (reach > kMaxGradientTimesWidth) g *= kMaxGradientTimesWidth / reach;
+            float free = received.unattenuated[c];
+            g = boundedGradient(g, i, s, free > 0.0 ? received.light[c] / free : 1.0);
         }
         v.gradient[c] = mat3(view) * g;
     }

@@ -82,6 +82,16 @@ TEST(SampleFile, RoundTrips) {
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
+TEST(SampleFile, SkinsHoldNoSamples) {
+    test::ScratchDir dir;
+    SampleSet skin = makeSamples(0);
+    skin.parameters.scheme = SampleScheme::Skin;
+    writeSampleFile(dir.path() / "skin.lsf", skin);
+    const SampleSet r = readSampleFile(dir.path() / "skin.lsf");
+    EXPECT_EQ(r.size(), 0u);
+    EXPECT_EQ(r.parameters.scheme, SampleScheme::Skin);
+}
+
 TEST(SampleFile, RejectsDamagedFiles) {
     test::ScratchDir dir;
     const auto good = dir.path() / "good.lsf";

@@ -111,6 +111,20 @@ TEST(Preprocessor, PublishedSchemeStartsOneSpacingDownWithEqualWeights) {
     EXPECT_GT(shallowest, 0.7 * set.parameters.layerSpacing);
 }
 
+TEST(Preprocessor, OpticallyThickObjectsAreSkins) {
+    // sigma_t 1e3: light dies within 5e-3 of the unit sphere's surface, under a
+    // tenth of the spacing of 1500 samples; at 2 it reaches 2.2 deep.
+    std::vector<std::string> warnings;
+    const VolumeObject thick(test::simpleObject(test::modelsDir() / "sphere.obj", 1e3, 0.75), warnings);
+    const SampleSet skin = preprocessObject(thick, small());
+    EXPECT_EQ(skin.parameters.scheme, SampleScheme::Skin);
+    EXPECT_EQ(skin.size(), 0u);
+    const VolumeObject thin(test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75), warnings);
+    EXPECT_EQ(preprocessObject(thin, small()).parameters.scheme, SampleScheme::Lucent);
+    // The published scheme samples whatever the density.
+    EXPECT_EQ(preprocessObject(thick, publishedScheme(small())).parameters.scheme, SampleScheme::Published);
+}
+
 TEST(Preprocessor, NoSampleInsideABlocker) {
     ObjectDesc desc = test::simpleObject(test::modelsDir() / "cube.obj", 0.8, 0.9);
     desc.medium.blockers = {test::modelsDir() / "torus.obj"};

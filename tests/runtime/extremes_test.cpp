@@ -110,7 +110,9 @@ double checkedRatio(const Case& c) {
     expectFiniteAndNonNegative(r.ss, "ss");
     expectFiniteAndNonNegative(r.reference, "reference");
     const double ref = meanOf(r.reference);
-    return ref > 0.0 ? meanOf(r.ss) / ref : (meanOf(r.ss) == 0.0 ? 1.0 : kInfinity);
+    const double ratio = ref > 0.0 ? meanOf(r.ss) / ref : (meanOf(r.ss) == 0.0 ? 1.0 : kInfinity);
+    std::printf("ss / reference %.3f, relative RMSE %.3f\n", ratio, compareImages(r.ss, r.reference).relativeRmse);
+    return ratio;
 }
 
 Case sphere(double sigmaT) {
@@ -126,10 +128,18 @@ TEST(Extremes, VanishingExtinction) {
 }
 
 TEST(Extremes, EnormousExtinction) {
-    // Light dies within 1e-3 of the surface, far inside one Gaussian. Finite and
-    // non-negative; ss still loses this skin's light (open in issue 4), so no
-    // accuracy bound is claimed here.
-    checkedRatio(sphere(1e4));
+    // Light dies within 0.05 and 5e-4 of the surface, far inside one Gaussian:
+    // the preprocessor makes the sphere a skin (SampleScheme::Skin), whose closed
+    // form is exact under a plane; the sphere's curvature costs a few per cent.
+    for (double sigmaT : {1e2, 1e4}) {
+        test::ScratchDir dir;
+        const Render r = render(sphere(sigmaT), dir);
+        expectFiniteAndNonNegative(r.ss, "ss");
+        const ImageError e = compareImages(r.ss, r.reference);
+        std::printf("sigma_t %g: relative RMSE %.3f, mean ratio %.3f\n", sigmaT, e.relativeRmse, e.meanRatio);
+        EXPECT_LT(e.relativeRmse, 0.05) << sigmaT;
+        EXPECT_NEAR(e.meanRatio, 1.0, 0.03) << sigmaT;
+    }
 }
 
 TEST(Extremes, AlbedoZeroScattersNothingAndAlbedoOneStaysFinite) {
@@ -143,14 +153,25 @@ TEST(Extremes, AlbedoZeroScattersNothingAndAlbedoOneStaysFinite) {
 
 TEST(Extremes, TinyAndHugeObjectsGiveTheSameImage) {
     test::ScratchDir unitDir, tinyDir, hugeDir;
-    const Image unit = render(sphere(2.0), unitDir).ss;
+    const Render unit = render(sphere(2.0), unitDir);
+    const double unitError = compareImages(unit.ss, unit.reference).relativeRmse;
     for (double scale : {1e-3, 1e3}) {
         Case c = sphere(2.0);
         c.scale = scale;
-        const Image scaled = render(c, scale < 1 ? tinyDir : hugeDir).ss;
-        expectFiniteAndNonNegative(scaled, "scaled");
-        // Measured 9%: the sampling is not yet exactly scale-invariant (open in issue 4).
-        EXPECT_LT(compareImages(scaled, unit).relativeRmse, 0.12) << "scale " << scale;
+        const Render scaled = render(c, scale < 1 ? tinyDir : hugeDir);
+        expectFiniteAndNonNegative(scaled.ss, "scaled");
+        // The physics is scale-free: the reference must not move.
+        EXPECT_LT(compareImages(scaled.reference, unit.reference).relativeRmse, 0.01) << "scale " << scale;
+        // ss as accurate at every scale. At 1e-3 OpenVDB's marching cubes cut the
+        // layers slightly differently (1518 samples instead of 1492 from the same
+        // seed), so the two ss images differ by their sampling noise (measured
+        // 8.9%), not by a bias: each stays as close to its own reference.
+        const double error = compareImages(scaled.ss, scaled.reference).relativeRmse;
+        const double difference = compareImages(scaled.ss, unit.ss).relativeRmse;
+        std::printf("scale %g: relative RMSE %.3f (unit sphere %.3f), against the unit sphere's ss %.3f\n", scale,
+                    error, unitError, difference);
+        EXPECT_LT(error, unitError + 0.02) << "scale " << scale;
+        EXPECT_LT(difference, 0.12) << "scale " << scale;
     }
 }
 
@@ -183,11 +204,8 @@ TEST(Extremes, LightInsideAndOnTheSurface) {
 TEST(Extremes, CameraInsideTheObject) {
     Case c = sphere(0.5);
     c.camera = Vec3(0, 0, 0.5);
-    const double ratio = checkedRatio(c);
-    // The rays start at the eye (measured 0.72 of the reference's light; the
-    // Gaussians behind the eye are not drawn).
-    EXPECT_GT(ratio, 0.5);
-    EXPECT_LT(ratio, 1.5);
+    // The rays start at the eye and are attenuated from there (measured 0.956).
+    EXPECT_NEAR(checkedRatio(c), 1.0, 0.1);
 }
 
 TEST(Extremes, SixtyFourLights) {
