@@ -26,7 +26,7 @@ Command addPreprocessCommand(CLI::App& app) {
     sub->add_option("--samples", o->samples, "Target sample count (overrides the preset)")->check(CLI::Range(1, 50000000));
     sub->add_option("--directions", o->directions, "Directions d of the density heuristic")->check(CLI::Range(6, 65536));
     sub->add_option("--projection-directions", o->projectionDirections, "Directions of the SH projection")->check(CLI::Range(16, 65536));
-    sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")->check(CLI::Range(1, 16));
+    sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")->check(CLI::Range(1, int(kMaxSampleShOrder)));
     sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file");
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(CLI::Range(0.05, 20.0));

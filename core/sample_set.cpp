@@ -133,7 +133,9 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     const uint64_t count = r.get<uint64_t>();
     s.shOrder = r.get<uint32_t>();
     s.channels = r.get<uint32_t>();
-    if (s.shOrder < 1 || s.shOrder > 16) throw Error(name, "SH order " + std::to_string(s.shOrder) + " is out of range");
+    if (s.shOrder < 1 || s.shOrder > kMaxSampleShOrder)
+        throw Error(name, "SH order " + std::to_string(s.shOrder) + " is out of range (1 to " +
+                              std::to_string(kMaxSampleShOrder) + ")");
     if (s.channels != 1 && s.channels != 3) throw Error(name, "channel count must be 1 or 3");
     s.sceneFingerprint = r.get<uint64_t>();
     float b[6];

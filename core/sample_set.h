@@ -75,6 +75,8 @@ struct SampleSet {
 };
 
 inline constexpr uint32_t kSampleFileVersion = 4;
+// SH bands a sample file may hold: the most the runtime evaluates (shaders/sample_light.glsl).
+inline constexpr uint32_t kMaxSampleShOrder = 8;
 
 // Writes atomically (temporary file + rename).
 void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples);

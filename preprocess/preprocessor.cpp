@@ -151,6 +151,9 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     const MediumDesc& medium = object.desc().medium;
     const TriangleMesh& mesh = object.mesh();
     const std::string& name = object.desc().name;
+    if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))
+        throw Error("SH order " + std::to_string(settings.shOrder) + " is out of range (1 to " +
+                    std::to_string(kMaxSampleShOrder) + ")");
 
     // The most penetrating channel decides how deep light reaches and what is culled.
     const double minSigmaT = std::min({medium.sigmaT.r, medium.sigmaT.g, medium.sigmaT.b});

@@ -14,7 +14,9 @@ constexpr size_t kVec4PerSample = 6;  // struct Sample of shaders/sample_light.g
 GpuSamples::GpuSamples(const SampleSet& samples)
     : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
       parameters_(samples.parameters) {
-    if (samples.shOrder > 8) throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most 8");
+    if (samples.shOrder > kMaxSampleShOrder)
+        throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most " +
+                    std::to_string(kMaxSampleShOrder));
     // struct Sample of shaders/sample_light.glsl
     std::vector<glm::vec4> packed(kVec4PerSample * count_);
     for (size_t i = 0; i < count_; ++i) {

@@ -152,6 +152,10 @@ TEST_F(BadInput, UnknownSubcommandOption) {
     expectFailure("preprocess " + dir.write("scene.json", "{}").string() + " --quality ultra", "quality");
 }
 
+TEST_F(BadInput, ShOrderBeyondWhatTheRuntimeEvaluates) {
+    expectFailure("preprocess " + dir.write("scene.json", "{}").string() + " --sh-order 9", "--sh-order");
+}
+
 TEST(Cli, PreprocessThenInfo) {
     test::ScratchDir dir;
     const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
