@@ -39,7 +39,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
     glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(samples.sh.size(), 1) * sizeof(float)),
                          samples.sh.empty() ? nullptr : samples.sh.data(), 0);
     // struct Received of shaders/sample_light.glsl
-    glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * 4 * sizeof(glm::vec4)), nullptr, 0);
+    glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * 3 * sizeof(glm::vec4)), nullptr, 0);
 }
 
 void GpuSamples::findSlabs(const SampleSet& samples) {

@@ -80,6 +80,12 @@ std::string withSampleLight(const char* source) {
     return text.substr(0, eol) + shaders::sample_light_glsl + text.substr(eol);
 }
 
+std::string withDefine(const char* source, const char* name) {
+    const std::string text = source;
+    const size_t eol = text.find('\n') + 1;
+    return text.substr(0, eol) + "#define " + name + "\n" + text.substr(eol);
+}
+
 void setShNormalisation(const GlProgram& program) {
     // sqrt(2) K_lm (K_l0 for m = 0), so the shaders need no factorials.
     float normalisation[64];
@@ -124,6 +130,11 @@ struct ScatteringRenderer::Impl {
     GlProgram scatterProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", scatterVertex.c_str()},
                              {GL_GEOMETRY_SHADER, "shaders/scatter.geom", shaders::scatter_geom},
                              {GL_FRAGMENT_SHADER, "shaders/scatter.frag", shaders::scatter_frag}};
+    // The same for objects of density slabs (shaders/scatter.frag, DENSITY_SLABS).
+    std::string scatterSlabsFragment = withDefine(shaders::scatter_frag, "DENSITY_SLABS");
+    GlProgram scatterSlabsProgram{{GL_VERTEX_SHADER, "shaders/scatter.vert", scatterVertex.c_str()},
+                                  {GL_GEOMETRY_SHADER, "shaders/scatter.geom", shaders::scatter_geom},
+                                  {GL_FRAGMENT_SHADER, "shaders/scatter.frag", scatterSlabsFragment.c_str()}};
     GlProgram receivedProgram{{GL_COMPUTE_SHADER, "shaders/received.comp", receivedCompute.c_str()}};
     GlProgram copyDepthProgram{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
                                {GL_FRAGMENT_SHADER, "shaders/copy_depth.frag", shaders::copy_depth_frag}};
@@ -139,7 +150,7 @@ struct ScatteringRenderer::Impl {
 
     explicit Impl(double cutoff) : cutoffSigmas(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
         glCreateVertexArrays(1, &emptyVao);
-        for (const GlProgram* p : {&scatterProgram, &receivedProgram}) {
+        for (const GlProgram* p : {&scatterProgram, &scatterSlabsProgram, &receivedProgram}) {
             setShNormalisation(*p);
             glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(kShadowUnit));
         }
@@ -335,27 +346,31 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
-        const GlProgram& p = r.scatterProgram;
-        glUseProgram(p.id());
-        glUniformMatrix4fv(p.uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
-        glUniformMatrix4fv(p.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
-        glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
         const glm::mat3 viewToWorld = glm::transpose(glm::mat3(view.view));
-        glUniformMatrix3fv(p.uniform("viewToWorld"), 1, GL_FALSE, glm::value_ptr(viewToWorld));
         // View-space direction through pixel (x, y) at z = -1 for this projection.
         const glm::mat4& P = view.projection;
-        glUniform4f(p.uniform("pixelToView"), 2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
-                    (P[2][0] - 1.0f) / P[0][0], (P[2][1] - 1.0f) / P[1][1]);
-        glUniform1i(p.uniform("lightCount"), r.lightCount);
-        glUniform1f(p.uniform("cutoffSigmas"), float(r.cutoffSigmas));
-        glUniform1f(p.uniform("discardBelow"), options.discardBelow);
-        glUniform1f(p.uniform("extinctionScale"), options.extinctionScale);
+        const glm::vec4 pixelToView(2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
+                                    (P[2][0] - 1.0f) / P[0][0], (P[2][1] - 1.0f) / P[1][1]);
+        for (const GlProgram* program : {&r.scatterProgram, &r.scatterSlabsProgram}) {
+            const GLuint id = program->id();
+            glProgramUniformMatrix4fv(id, program->uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
+            glProgramUniformMatrix4fv(id, program->uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
+            glProgramUniform3fv(id, program->uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+            glProgramUniformMatrix3fv(id, program->uniform("viewToWorld"), 1, GL_FALSE, glm::value_ptr(viewToWorld));
+            glProgramUniform4fv(id, program->uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
+            glProgramUniform1i(id, program->uniform("lightCount"), r.lightCount);
+            glProgramUniform1f(id, program->uniform("cutoffSigmas"), float(r.cutoffSigmas));
+            glProgramUniform1f(id, program->uniform("discardBelow"), options.discardBelow);
+            glProgramUniform1f(id, program->uniform("extinctionScale"), options.extinctionScale);
+            glProgramUniform1i(id, program->uniform("raySegments"), 0);
+        }
         glBindTextureUnit(0, r.segments.texture);
-        glUniform1i(p.uniform("raySegments"), 0);
         for (const Object& o : r.objects) {
+            const auto& slabs = o.samples->slabBounds();
+            const GlProgram& p = slabs.empty() ? r.scatterProgram : r.scatterSlabsProgram;
             o.samples->bind();
             if (o.shadows) o.shadows->bind(kShadowUnit);
-            for (const GlProgram* program : {&r.scatterProgram, &r.receivedProgram})
+            for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&r.receivedProgram)})
                 glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
             // Isotropic media: the received light does not depend on the view, so it
             // is computed when the lights or the medium scale change, not every frame.
@@ -372,17 +387,16 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
                 o.samples->computeReceived();
                 o.samples->receivedValid = true;
                 o.samples->receivedScale = options.extinctionScale;
-                glUseProgram(p.id());
             }
+            glUseProgram(p.id());
             glUniform1i(p.uniform("receivedIsCached"), cache ? 1 : 0);
             glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
             glUniform1i(p.uniform("channels"), o.samples->channels());
             glUniform1f(p.uniform("g"), float(o.g));
             glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
-            const auto& slabs = o.samples->slabBounds();
             glUniform1i(p.uniform("exactViewAttenuation"), o.samples->homogeneous() || !slabs.empty() ? 1 : 0);
-            glUniform1i(p.uniform("slabCount"), GLint(slabs.size()));
             if (!slabs.empty()) {
+                glUniform1i(p.uniform("slabCount"), GLint(slabs.size()));
                 glUniform4fv(p.uniform("slabBounds"), GLsizei(slabs.size()), glm::value_ptr(slabs[0]));
                 std::vector<glm::vec4> extinction = o.samples->slabExtinction();
                 for (glm::vec4& e : extinction) e *= options.extinctionScale;

@@ -8,6 +8,11 @@ cmake --build build-sanitize -j"$(nproc)"
 # Mesa, Embree and TBB are not instrumented; their allocations at exit are not ours.
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-# Full stacks at allocation, so that leaks inside Mesa's JIT are attributed to it.
-export ASAN_OPTIONS="fast_unwind_on_malloc=0"
-ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" --timeout 1200
+# Every test without OpenGL, with leak checks.
+ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" --label-exclude opengl
+# The OpenGL tests under ASan and UBSan without leak checks: Mesa dlcloses its
+# drivers before the check at exit, so their allocations show as unknown modules
+# that no suppression can name, and unwinding through them at every malloc
+# instead (fast_unwind_on_malloc=0) deadlocks against the loader's lock.
+LSAN_OPTIONS="$LSAN_OPTIONS:detect_leaks=0" \
+  ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" --label-regex opengl

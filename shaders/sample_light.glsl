@@ -172,7 +172,6 @@ struct Received {
     vec4 light;         // sum_j p E_j psi_i(w_j)
     vec4 towardLights;  // sum_j share_j w_j
     vec4 falloff;       // sum_j share_j 2 w_j / r_j (point lights)
-    vec4 unattenuated;  // sum_j p E_j: what light would arrive with no medium in the way
 };
 
 // The light sample i receives, with the phase function towards toCamera (any
@@ -180,7 +179,7 @@ struct Received {
 Received receivedLight(int i, vec3 toCamera) {
     vec3 centre = samples[i].centreWidth.xyz;
     float width = samples[i].centreWidth.w;
-    vec3 received = vec3(0.0), toward = vec3(0.0), falloff = vec3(0.0), unattenuated = vec3(0.0);
+    vec3 received = vec3(0.0), toward = vec3(0.0), falloff = vec3(0.0);
     float total = 0.0;
     for (int j = 0; j < lightCount; ++j) {
         vec3 toLight;
@@ -201,9 +200,7 @@ Received receivedLight(int i, vec3 toCamera) {
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
         vec3 psi = attenuation(i, toLight);
-        vec3 free = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance;
-        vec3 light = free * psi;
-        unattenuated += free;
+        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;
         received += light;
         toward += share * pathGradient(i, toLight, psi.r);
@@ -211,5 +208,5 @@ Received receivedLight(int i, vec3 toCamera) {
         total += share;
     }
     float norm = total > 0.0 ? 1.0 / total : 0.0;
-    return Received(vec4(received, 0.0), vec4(toward * norm, 0.0), vec4(falloff * norm, 0.0), vec4(unattenuated, 0.0));
+    return Received(vec4(received, 0.0), vec4(toward * norm, 0.0), vec4(falloff * norm, 0.0));
 }

@@ -22,11 +22,15 @@ uniform vec3 cameraPosition;
 uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
 uniform int channels;           // 1: one gradient serves all three channels
 uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
+#ifdef DENSITY_SLABS
 // The density slabs along regionAxis (runtime/scattering_pass.h), when sigma_t is
-// constant in each: [lo, hi] and sigma_t.
+// constant in each: [lo, hi] and sigma_t. Compiled only into the program for
+// objects that have them: on llvmpipe the loop alone, never run, doubled the
+// frame time of every other object.
 uniform int slabCount;
 uniform vec4 slabBounds[16];
 uniform vec4 slabExtinction[16];
+#endif
 
 out vec4 colour;
 
@@ -87,6 +91,7 @@ vec2 slabInterval(vec2 bounds, float origin, float direction) {
     return vec2(min(ta, tb), max(ta, tb));
 }
 
+#ifdef DENSITY_SLABS
 // The optical depth from the front face to where the ray enters the sample's
 // slab, less the sample's own sigma_t over that distance: what the other slabs
 // take beyond what exp(-sigma_t (t - t0)) assumes (0 in a single slab).
@@ -99,6 +104,7 @@ vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
     }
     return depth;
 }
+#endif
 
 void main() {
     vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
@@ -111,7 +117,9 @@ void main() {
         vec2 span = slabInterval(f.region, o, d);
         t0 = max(t0, span.x);
         t1 = min(t1, span.y);
-        if (t1 > t0 && slabCount > 0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
+#ifdef DENSITY_SLABS
+        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
+#endif
     }
     if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
 

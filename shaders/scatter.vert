@@ -44,29 +44,9 @@ out VertexOut {
     vec2 region;
 } v;
 
-// The light may grow across the Gaussian only by what the medium took on its way
-// in: the largest value of exp(G . (x - b)) times the Gaussian, over the half-space
-// under the sample's boundary ball's tangent plane, stays below e^kGainSlack / T,
-// T = light / unattenuated. Under a plane this leaves the exact gradient
-// sigma_t n / cos untouched, however dense the medium; where the linear exponent
-// would overshoot (curved boundaries at grazing light) it stops growing.
-const float kGainSlack = 3.0;
-
-// max over x with (x - b) . n <= depth of G . (x - b) - |x - b|^2 / (2 s^2).
-float largestExponent(vec3 g, vec3 n, float depth, float s) {
-    float s2 = s * s, normal = dot(g, n);
-    float across = 0.5 * dot(g - normal * n, g - normal * n) * s2;
-    if (normal <= 0.0) return across;
-    return across + (normal * s2 <= depth ? 0.5 * normal * normal * s2 : normal * depth - 0.5 * depth * depth / s2);
-}
-
-vec3 boundedGradient(vec3 g, int i, float s, float transmittance) {
-    vec4 ball = samples[i].ball;
-    float largest = ball.w >= 0.0 ? largestExponent(g, ball.xyz, ball.w, s) : 0.5 * dot(g, g) * s * s;
-    float limit = kGainSlack - log(clamp(transmittance, 1e-30, 1.0));
-    // Scaling G by l < 1 scales that maximum by at most l.
-    return largest > limit ? g * (limit / largest) : g;
-}
+// |G| s beyond this extrapolates the exponential past where the centre's light
+// says anything about it (the light then changes by e^3 within one sigma).
+const float kMaxGradientTimesWidth = 3.0;
 
 void main() {
     int i = gl_VertexID;
@@ -96,8 +76,8 @@ void main() {
         vec3 g = vec3(0.0);
         if (lightVaries) {
             g = v.extinction[c] * received.towardLights.xyz + received.falloff.xyz;
-            float free = received.unattenuated[c];
-            g = boundedGradient(g, i, s, free > 0.0 ? received.light[c] / free : 1.0);
+            float reach = length(g) * s;
+            if (reach > kMaxGradientTimesWidth) g *= kMaxGradientTimesWidth / reach;
         }
         v.gradient[c] = mat3(view) * g;
     }
