@@ -297,17 +297,22 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, r.lightBuffer);
 
     // Pass 1: reflected surface, tested against the host's depth, writing none.
-    if (options.surface) {
-        glUseProgram(r.surfaceProgram.id());
-        const GlProgram& p = r.surfaceProgram;
+    // Both passes over the meshes' nearest front faces add light, writing no depth.
+    auto beginMeshPass = [&](const GlProgram& p) {
+        glUseProgram(p.id());
         glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
         glUniform1i(p.uniform("lightCount"), r.lightCount);
         glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
         glBindTextureUnit(0, r.front.texture);
         glUniform1i(p.uniform("frontDepth"), 0);
+        glDisable(GL_CULL_FACE);
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
+    };
+    if (options.surface) {
+        const GlProgram& p = r.surfaceProgram;
+        beginMeshPass(p);
         for (const Object& o : r.objects) {
             if (!o.surface) continue;
             glUniform3fv(p.uniform("diffuse"), 1, glm::value_ptr(glm::vec3(o.surface->diffuse)));
@@ -321,16 +326,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     // surface, in closed form, tested against the host's depth like the surface.
     if (options.scattering && std::any_of(r.objects.begin(), r.objects.end(), [](const Object& o) { return o.skin; })) {
         const GlProgram& p = r.skinProgram;
-        glUseProgram(p.id());
-        glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-        glUniform1i(p.uniform("lightCount"), r.lightCount);
-        glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
-        glBindTextureUnit(0, r.front.texture);
-        glUniform1i(p.uniform("frontDepth"), 0);
-        glDisable(GL_CULL_FACE);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
+        beginMeshPass(p);
         for (const Object& o : r.objects) {
             if (!o.skin) continue;
             glUniform3fv(p.uniform("albedo"), 1, glm::value_ptr(glm::vec3(o.albedo)));
