@@ -1,8 +1,8 @@
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 #include "apps/commands.h"
+#include "apps/run_program.h"
 #include "bench/accuracy_sweep.h"
 #include "core/error.h"
 
@@ -24,9 +24,9 @@ Command addBenchCommand(CLI::App& app) {
                     "--method reference; write CSV and the error-versus-time plots");
     sub->add_option("scenes", o->scenes, "Scene files")->required();
     sub->add_option("-o,--output", o->output, "Directory for accuracy.csv and the plots");
-    sub->add_option("--knobs", o->knobs, "Knobs to sweep (default all): samples, published, heuristic-directions, "
-                                         "projection-directions, sh-order, width-factor, cutoff, layer-spacing")
-        ->delimiter(',');
+    std::string knobHelp = "Knobs to sweep (default all):";
+    for (const std::string& k : accuracyKnobNames()) knobHelp += " " + k;
+    sub->add_option("--knobs", o->knobs, knobHelp)->delimiter(',');
     sub->add_option("--size", o->size, "Image width and height (default: each scene camera's)")->check(CLI::Range(8, 4096));
     sub->add_option("--frames", o->frames, "Timed frames per setting (median reported)")->check(CLI::Range(1, 1000));
     sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")->check(CLI::Range(1e-8, 0.5));
@@ -46,9 +46,8 @@ Command addBenchCommand(CLI::App& app) {
         runAccuracyBench(scenes, options, csv);
         std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());
         if (!o->plot) return;
-        const std::string command = "'" LUCENT_SOURCE_DIR "/scripts/plot-accuracy.py' '" + csv.string() +
-                                    "' '" + o->output + "'";
-        if (std::system(command.c_str()) != 0)
+        const std::filesystem::path script = installedDataFile("plot-accuracy.py");
+        if (runProgram({"python3", script.string(), csv.string(), o->output}) != 0)
             throw Error(csv.string(), "plotting failed (python3-matplotlib missing? scripts/install-deps.sh installs it)");
     };
 }

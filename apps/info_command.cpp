@@ -40,7 +40,7 @@ Command addInfoCommand(CLI::App& app) {
         std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
         std::printf("  cull epsilon           %g\n", p.cullEpsilon);
         std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)"
-                    : p.scheme == SampleScheme::Skin ? "skin (optically thick: the surface's closed form, no samples)"
+                    : p.scheme == SampleScheme::OpticallyThick ? "optically thick (the surface's closed form, no samples)"
                                                      : "lucent");
         Stats radius, width, sigmaS, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();

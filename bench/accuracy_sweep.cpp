@@ -8,10 +8,11 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/statistics.h"
 #include "core/image_compare.h"
+#include "core/loaded_scene.h"
 #include "core/scene.h"
-#include "core/volume_object.h"
-#include "reference/reference_renderer.h"
+#include "methods/method_table.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
 
@@ -20,11 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
 
 std::string format(double v) {
     char text[32];
@@ -79,9 +75,11 @@ std::vector<std::string> accuracyKnobNames() {
 
 std::vector<SweepSetting> accuracySweep(const std::vector<std::string>& wanted, const PreprocessSettings& base) {
     for (const auto& name : wanted)
-        if (std::none_of(knobs().begin(), knobs().end(), [&](const Knob& k) { return name == k.name; }))
-            throw Error("unknown knob '" + name + "' (expected one of: samples, published, heuristic-directions, "
-                        "projection-directions, sh-order, width-factor, cutoff, layer-spacing)");
+        if (std::none_of(knobs().begin(), knobs().end(), [&](const Knob& k) { return name == k.name; })) {
+            std::string names;
+            for (const std::string& n : accuracyKnobNames()) names += (names.empty() ? "" : ", ") + n;
+            throw Error("unknown knob '" + name + "' (expected one of: " + names + ")");
+        }
     std::vector<SweepSetting> settings;
     for (const auto& knob : knobs()) {
         if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), knob.name) == wanted.end()) continue;
@@ -113,21 +111,17 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
     for (const auto& sceneFile : sceneFiles) {
         SceneDesc scene = parseScene(sceneFile);
         if (options.size > 0) scene.camera.width = scene.camera.height = options.size;
-        std::vector<std::string> warnings;
-        const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+        LoadedScene loaded = loadScene(scene, false);
+        const std::vector<VolumeObject>& objects = loaded.objects;
         const std::string sceneName = sceneFile.stem().string();
-        Bounds3 bounds;
-        for (const auto& o : objects) {
-            bounds.extend(o.mesh().bounds().min);
-            bounds.extend(o.mesh().bounds().max);
-        }
+        const Bounds3 bounds = loaded.bounds();
 
         std::fprintf(stderr, "lucent: bench: %s: reference (%dx%d, tolerance %g)\n", sceneName.c_str(),
                      scene.camera.width, scene.camera.height, options.referenceTolerance);
-        ReferenceSettings referenceSettings;
+        MethodSettings referenceSettings;
         referenceSettings.surface = false;
         referenceSettings.tolerance = options.referenceTolerance;
-        const Image reference = ReferenceRenderer(scene, objects).render(referenceSettings);
+        const Image reference = renderWith(findMethod("reference"), loaded, referenceSettings);
 
         const ViewSetup view = viewSetupFor(scene.camera, bounds);
         OffscreenFrame frame(view.width, view.height);
@@ -142,11 +136,13 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
                 for (const auto& o : objects) sampleSets.push_back(preprocessObject(o, setting.preprocess));
                 preprocessSeconds = secondsSince(start);
             }
+            // In memory, but through the sample-file contract: made for these objects.
+            attachSamples(loaded, sampleSets);
             ScatteringRenderer renderer(setting.cutoff);
             size_t sampleCount = 0;
             for (size_t i = 0; i < objects.size(); ++i) {
-                renderer.addObject(translucentObjectFor(objects[i], sampleSets[i]));
-                sampleCount += sampleSets[i].size();
+                renderer.addObject(translucentObjectFor(objects[i], loaded.samples[i]));
+                sampleCount += loaded.samples[i].size();
             }
             renderer.setLights(scene.lights);
             DrawOptions draw;

@@ -11,6 +11,8 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/loaded_scene.h"
+#include "core/statistics.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
 #include "preprocess/preprocessor.h"
@@ -23,11 +25,6 @@ using namespace lucent;
 namespace {
 
 constexpr GLenum kFragmentShaderInvocations = 0x82F4;  // ARB_pipeline_statistics_query
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 // n lights at one place, each with 1/n of the power: the image, and so the
 // fragment work, stays the same, and the sweep measures what each light costs.
@@ -107,7 +104,7 @@ int main(int argc, char** argv) {
             PreprocessSettings s;
             s.samples = count;
             std::fprintf(stderr, "preprocessing %d samples...\n", count);
-            return preprocessObject(object, s);
+            return checkSamplesBelong(object, preprocessObject(object, s), "in-memory samples of " + object.desc().name);
         };
 
         std::printf("| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n");

@@ -9,15 +9,22 @@ set_target_properties(lucent_core PROPERTIES EXPORT_NAME core)
 set_target_properties(lucent_glad PROPERTIES EXPORT_NAME glad)
 set_target_properties(lucent_runtime PROPERTIES EXPORT_NAME runtime)
 set_target_properties(lucent_offscreen PROPERTIES EXPORT_NAME offscreen)
+set_target_properties(lucent_preprocess PROPERTIES EXPORT_NAME preprocess)
+set_target_properties(lucent_reference PROPERTIES EXPORT_NAME reference)
+# The installed lucent finds its libraries beside it, wherever the prefix is.
+set_target_properties(lucent PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
 
-install(TARGETS lucent_core lucent_glad lucent_runtime lucent_offscreen
+install(TARGETS lucent_core lucent_glad lucent_runtime lucent_offscreen lucent_preprocess lucent_reference
         EXPORT LucentTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${LUCENT_INSTALL_INCLUDE})
 install(TARGETS lucent RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY core/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/core FILES_MATCHING PATTERN "*.h")
-install(DIRECTORY runtime/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/runtime FILES_MATCHING PATTERN "*.h")
+install(FILES preprocess/preprocessor.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/preprocess)
+install(FILES reference/reference_renderer.h reference/reference_method.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/reference)
+# The runtime's public headers only: internal/ holds its private ones.
+install(DIRECTORY runtime/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/runtime FILES_MATCHING PATTERN "*.h" PATTERN internal EXCLUDE)
 install(DIRECTORY ${CMAKE_BINARY_DIR}/runtime/glad/include/ DESTINATION ${LUCENT_INSTALL_INCLUDE})
 install(EXPORT LucentTargets NAMESPACE Lucent:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
 

@@ -58,20 +58,6 @@ void writeExr(const std::filesystem::path& file, const Image& image) {
     out.commit();
 }
 
-float autoExposure(const Image& image) {
-    std::vector<float> luminance;
-    luminance.reserve(image.pixels.size());
-    for (const auto& p : image.pixels) {
-        const glm::vec3 c = sanitized(p);
-        const float l = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-        if (l > 0.0f) luminance.push_back(l);
-    }
-    if (luminance.empty()) return 1.0f;
-    const size_t k = std::min(luminance.size() - 1, size_t(0.995 * double(luminance.size())));
-    std::nth_element(luminance.begin(), luminance.begin() + long(k), luminance.end());
-    return 1.0f / luminance[k];
-}
-
 unsigned char toSrgb8(float linear) {
     linear = std::clamp(linear, 0.0f, 1.0f);
     const float s = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
@@ -110,6 +96,20 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
 }
 
 }  // namespace
+
+float autoExposure(const Image& image) {
+    std::vector<float> luminance;
+    luminance.reserve(image.pixels.size());
+    for (const auto& p : image.pixels) {
+        const glm::vec3 c = sanitized(p);
+        const float l = 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+        if (l > 0.0f) luminance.push_back(l);
+    }
+    if (luminance.empty()) return 1.0f;
+    const size_t k = std::min(luminance.size() - 1, size_t(0.995 * double(luminance.size())));
+    std::nth_element(luminance.begin(), luminance.begin() + long(k), luminance.end());
+    return 1.0f / luminance[k];
+}
 
 void writeImage(const std::filesystem::path& file, const Image& image, float exposure) {
     const std::string ext = file.extension().string();

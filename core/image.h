@@ -22,6 +22,10 @@ struct Image {
 // are written as 0 so that nothing downstream ever sees NaN or Inf.
 // For PNG, exposure scales radiance before the sRGB curve; exposure <= 0 picks one
 // that maps the 99.5th percentile of luminance to white.
+// The exposure that maps the 99.5th percentile of positive luminance to white
+// (1 for an image with none): what PNG output and the viewer use by default.
+float autoExposure(const Image& image);
+
 void writeImage(const std::filesystem::path& file, const Image& image, float exposure = 0.0f);
 Image readPfm(const std::filesystem::path& file);
 

@@ -152,7 +152,7 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     p.widthFactor = r.get<float>();
     p.cullEpsilon = r.get<float>();
     const uint32_t scheme = r.get<uint32_t>();
-    if (scheme > uint32_t(SampleScheme::Skin)) throw Error(name, "unknown sample scheme " + std::to_string(scheme));
+    if (scheme > uint32_t(SampleScheme::OpticallyThick)) throw Error(name, "unknown sample scheme " + std::to_string(scheme));
     p.scheme = SampleScheme(scheme);
     p.regionAxis = r.get<uint32_t>();
     if (p.regionAxis > kNoRegionAxis) throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");

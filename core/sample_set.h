@@ -19,11 +19,11 @@ namespace lucent {
 // partition-of-unity weights restricted to the inside, the Gaussians clipped to
 // their density slab, the light varying exponentially across each Gaussian, and
 // psi projected with the blockers filled by the medium, their shadows left to
-// the runtime (runtime/blocker_shadows.h).
-// Skin: the medium is optically thick at the scale of the samples (light dies
+// the runtime (runtime/internal/blocker_shadows.h).
+// OpticallyThick: the medium is optically thick at the scale of the samples (light dies
 // within a fraction of their spacing), there are none, and the runtime draws the
-// single scattering of the surface's sliver in closed form (shaders/skin.frag).
-enum class SampleScheme : uint32_t { Lucent = 0, Published = 1, Skin = 2 };
+// single scattering of the surface's sliver in closed form (runtime/internal/optically_thick.frag).
+enum class SampleScheme : uint32_t { Lucent = 0, Published = 1, OpticallyThick = 2 };
 inline constexpr uint32_t kNoRegionAxis = 3;
 
 struct SampleParameters {
@@ -75,7 +75,7 @@ struct SampleSet {
 };
 
 inline constexpr uint32_t kSampleFileVersion = 4;
-// SH bands a sample file may hold: the most the runtime evaluates (shaders/sample_light.glsl).
+// SH bands a sample file may hold: the most the runtime evaluates (runtime/internal/sample_light.glsl).
 inline constexpr uint32_t kMaxSampleShOrder = 8;
 
 // Writes atomically (temporary file + rename).

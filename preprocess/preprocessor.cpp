@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "core/error.h"
 #include "preprocess/density_heuristic.h"
@@ -138,104 +139,83 @@ PreprocessSettings qualityPreset(const std::string& name) {
     return s;
 }
 
-// Light depth, in mean Poisson radii, under which an object is drawn as a skin.
+namespace {
+
+// Light depth, in mean Poisson radii, under which an object is optically thick.
 // Measured on the unit sphere at 40k samples, 128x128 (docs/accuracy.md): at
-// sigma_t 8 (13 radii) the samples give 7.7% and the skin 13.7%; at 16 (6.9
-// radii) the samples 15.6% and the skin 7.0%.
-constexpr double kSkinDepthInRadii = 10.0;
+// sigma_t 8 (13 radii) the samples give 7.7% and the closed form 13.7%; at 16
+// (6.9 radii) the samples 15.6% and the closed form 7.0%.
+constexpr double kOpticallyThickDepthInRadii = 10.0;
 
-SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings* timings) {
-    PreprocessTimings local;
-    PreprocessTimings& t = timings ? *timings : local;
-    Stopwatch clock;
-    const MediumDesc& medium = object.desc().medium;
-    const TriangleMesh& mesh = object.mesh();
-    const std::string& name = object.desc().name;
-    if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))
-        throw Error("SH order " + std::to_string(settings.shOrder) + " is out of range (1 to " +
-                    std::to_string(kMaxSampleShOrder) + ")");
+uint32_t channelsOf(const MediumDesc& medium) {
+    return (medium.sigmaT.r == medium.sigmaT.g && medium.sigmaT.g == medium.sigmaT.b) ? 1 : 3;
+}
 
-    // The most penetrating channel decides how deep light reaches and what is culled.
-    const double minSigmaT = std::min({medium.sigmaT.r, medium.sigmaT.g, medium.sigmaT.b});
-    const double maxDepth = negligibleLightDepth(minSigmaT * object.density().minimum(), settings.cullEpsilon);
+// What every sample set of the object records, samples or not.
+SampleSet emptySetFor(const VolumeObject& object, const PreprocessSettings& settings, double r) {
+    SampleSet set;
+    set.shOrder = uint32_t(settings.shOrder);
+    set.channels = channelsOf(object.desc().medium);
+    set.sceneFingerprint = object.desc().fingerprint;
+    set.bounds = object.mesh().bounds();
+    set.parameters.seed = settings.seed;
+    set.parameters.meanRadius = float(r);
+    set.parameters.cullEpsilon = float(settings.cullEpsilon);
+    set.parameters.scheme = settings.scheme;
+    return set;
+}
 
-    // Mean radius r from the sample count: a maximal Poisson-disk set with spacing r
-    // fills space at about 0.73 / r^3 (random sequential packing at 38% of spheres
-    // of diameter r), over the shell that light reaches.
-    const double volume = std::abs(mesh.signedVolume());
-    const double shell = std::min(volume, mesh.area() * maxDepth);
-    double r = std::cbrt(0.726 * shell / std::max(settings.samples, 1));
-
-    // Light that dies within a fraction of the samples' spacing leaves nothing for
-    // Gaussians of that width to resolve: their mass sits mostly where no light is.
-    // There the medium is a sliver under a locally flat surface, whose single
-    // scattering has a closed form (shaders/skin.frag); the object needs no samples.
-    if (settings.scheme == SampleScheme::Lucent && maxDepth < kSkinDepthInRadii * r) {
-        std::fprintf(stderr, "lucent: %s: light dies within %.3g, under %.3g sample spacings: optically thick, "
-                     "drawn as the surface's single scattering (no samples)\n", name.c_str(), maxDepth, maxDepth / r);
-        SampleSet set;
-        set.shOrder = uint32_t(settings.shOrder);
-        set.channels = (medium.sigmaT.r == medium.sigmaT.g && medium.sigmaT.g == medium.sigmaT.b) ? 1 : 3;
-        set.sceneFingerprint = object.desc().fingerprint;
-        set.bounds = mesh.bounds();
-        set.parameters.seed = settings.seed;
-        set.parameters.meanRadius = float(r);
-        set.parameters.cullEpsilon = float(settings.cullEpsilon);
-        set.parameters.scheme = SampleScheme::Skin;
-        t.layers = clock.lap();
-        return set;
-    }
-
-    // Offset layers from half a spacing under the surface (the published scheme:
-    // one spacing) down to the light depth. In media so dense that light dies
-    // within one spacing, the layers close up so that a few still see light.
-    const bool published = settings.scheme == SampleScheme::Published;
-    const double firstLayer = published ? 1.0 : 0.5;
-    double spacing = std::min(settings.layerSpacing * r, maxDepth / (firstLayer + 2.0));
+// The offset layers under the surface (thesis 3.2.2) and the distance field they
+// come from, which the heuristic and the weights' normalisation read again.
+struct LayerStack {
+    double spacing = 0.0;
     std::vector<double> depths;
+    std::unique_ptr<DistanceField> distance;
+    std::vector<OffsetLayer> layers;
+    RadiusSurface surface;  // every layer's triangles in one mesh
+};
+
+// Layers from half a spacing under the surface (the published scheme: one
+// spacing) down to the light depth. In media so dense that light dies within one
+// spacing, the layers close up so that a few still see light.
+LayerStack buildLayers(const VolumeObject& object, const PreprocessSettings& settings, double r, double maxDepth) {
+    LayerStack stack;
+    const double firstLayer = settings.scheme == SampleScheme::Published ? 1.0 : 0.5;
+    stack.spacing = std::min(settings.layerSpacing * r, maxDepth / (firstLayer + 2.0));
     for (int k = 0; k < settings.maxLayers; ++k) {
-        const double depth = (k + firstLayer) * spacing;
+        const double depth = (k + firstLayer) * stack.spacing;
         if (depth > maxDepth) break;
-        depths.push_back(depth);
+        stack.depths.push_back(depth);
     }
-    std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n", name.c_str(),
-                 depths.size(), spacing, std::min(maxDepth, 1e300));
+    std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n",
+                 object.desc().name.c_str(), stack.depths.size(), stack.spacing, std::min(maxDepth, 1e300));
     // One distance field serves the layers and the heuristic. Its voxels are 1.5 r:
     // fine enough for marching cubes to follow the surface at the scale samples
     // resolve, and for central differences of T, which varies over a mean free path.
-    const DistanceField distance(mesh, 1.5 * r, (depths.empty() ? 0.0 : depths.back()) + spacing);
-    const std::vector<OffsetLayer> layers = distance.offsetLayers(depths);
-    if (layers.empty()) throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " + std::to_string(firstLayer * spacing));
-
-    RadiusSurface surface;
-    for (const auto& layer : layers) {
-        const uint32_t base = uint32_t(surface.positions.size());
-        surface.positions.insert(surface.positions.end(), layer.surface.positions.begin(), layer.surface.positions.end());
-        for (auto tri : layer.surface.triangles) surface.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
+    stack.distance = std::make_unique<DistanceField>(
+        object.mesh(), 1.5 * r, (stack.depths.empty() ? 0.0 : stack.depths.back()) + stack.spacing);
+    stack.layers = stack.distance->offsetLayers(stack.depths);
+    if (stack.layers.empty())
+        throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " +
+                                                     std::to_string(firstLayer * stack.spacing));
+    for (const auto& layer : stack.layers) {
+        const uint32_t base = uint32_t(stack.surface.positions.size());
+        stack.surface.positions.insert(stack.surface.positions.end(), layer.surface.positions.begin(),
+                                       layer.surface.positions.end());
+        for (auto tri : layer.surface.triangles)
+            stack.surface.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
     }
-    t.layerCount = layers.size();
-    t.layerVertices = surface.positions.size();
-    t.layers = clock.lap();
+    return stack;
+}
 
-    // Density heuristic, read at every layer vertex.
-    HeuristicSettings heuristic;
-    heuristic.directions = settings.heuristicDirections;
-    heuristic.extinction = minSigmaT;
-    heuristic.cullEpsilon = settings.cullEpsilon;
-    heuristic.seed = settings.seed;
-    HeuristicField heuristicField = sampleFirstMoment(object, distance, heuristic);
-    t.heuristicRays = heuristicField.raysCast;
-    t.firstMoments = clock.lap();
-    const std::vector<HeuristicPoint> density = densityAtPoints(heuristicField, surface.positions, heuristic);
-    t.divergence = clock.lap();
-
-    // Radius between 2r (lowest density) and r/2 (highest), thesis 3.2.4. The
-    // thesis maps the density's range linearly onto that of the radii, so that a
-    // nearly even density (a thin medium) still spans all of it, and its noise
-    // decides where samples go. Lucent puts samples in proportion to the density
-    // instead: radius ~ density^(-1/3), clamped to the same range.
+// Radius between 2r (lowest density) and r/2 (highest), thesis 3.2.4, relative
+// to r. The thesis maps the density's range linearly onto that of the radii, so
+// that a nearly even density (a thin medium) still spans all of it, and its noise
+// decides where samples go. Lucent puts samples in proportion to the density
+// instead: radius ~ density^(-1/3), clamped to the same range.
+std::vector<double> relativeRadii(const std::vector<HeuristicPoint>& density, SampleScheme scheme) {
     std::vector<double> relativeRadius(density.size());
-    if (settings.scheme == SampleScheme::Published) {
+    if (scheme == SampleScheme::Published) {
         const auto [rhoLo, rhoHi] = densityRange(density);
         for (size_t i = 0; i < density.size(); ++i) {
             const double rho = density[i].culled ? 0.0 : std::clamp((density[i].density - rhoLo) / (rhoHi - rhoLo), 0.0, 1.0);
@@ -248,16 +228,14 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
             relativeRadius[i] = rho > 0.0 ? std::clamp(std::cbrt(1.0 / rho), 0.5, 2.0) : 2.0;
         }
     }
-    RadiusSurface live;
-    live.positions = std::move(surface.positions);
-    for (const auto& tri : surface.triangles)
-        if (!density[tri[0]].culled || !density[tri[1]].culled || !density[tri[2]].culled) live.triangles.push_back(tri);
-    const bool nothingCulled = live.triangles.size() == surface.triangles.size();
-    if (live.triangles.empty())
-        throw Error(object.desc().mesh.string(), "no point inside receives light above the cull threshold");
+    return relativeRadius;
+}
 
-    // Fit r to the requested count: the count scales as r^-k with k between 2
-    // (layers sparser than r) and 3; measure k from two runs, then correct.
+// Poisson disks on the live layers with their count fitted to the request: the
+// count scales as r^-k with k between 2 (layers sparser than r) and 3; measure k
+// from two runs, then correct. Updates r to the radius used.
+std::vector<DiskSample> fitPoissonDisks(RadiusSurface& live, const std::vector<double>& relativeRadius, double& r,
+                                        const PreprocessSettings& settings, PreprocessTimings& t) {
     std::vector<DiskSample> disks;
     auto sampleWith = [&](double radius) {
         live.radius.resize(relativeRadius.size());
@@ -275,36 +253,30 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
         r = r1 * std::pow(n1 / target, 1.0 / k);
         n0 = sampleWith(r);
     }
-    t.poissonDisk = clock.lap();
+    return disks;
+}
 
-    SampleSet set;
-    set.shOrder = uint32_t(settings.shOrder);
-    set.channels = (medium.sigmaT.r == medium.sigmaT.g && medium.sigmaT.g == medium.sigmaT.b) ? 1 : 3;
-    set.sceneFingerprint = object.desc().fingerprint;
-    set.bounds = mesh.bounds();
-    SampleParameters& p = set.parameters;
-    p.seed = settings.seed;
-    p.heuristicDirections = uint32_t(settings.heuristicDirections);
-    p.projectionDirections = uint32_t(settings.projectionDirections);
-    p.layerCount = uint32_t(layers.size());
-    p.layerSpacing = float(spacing);
-    p.meanRadius = float(r);
-    p.widthFactor = float(settings.widthFactor);
-    p.cullEpsilon = float(settings.cullEpsilon);
+// What describeSamples leaves for the weights and the projection.
+struct DescribedSamples {
+    std::vector<Vec3> positions;  // in double precision, as the projection casts its rays from them
+    std::vector<WeightedSample> weighted;
+};
 
-    p.scheme = settings.scheme;
-
+// Each disk outside the blockers becomes a sample: position, radius, Gaussian
+// width, coefficients, its region and mirror image, its boundary ball.
+DescribedSamples describeSamples(const VolumeObject& object, const std::vector<DiskSample>& disks,
+                                 const PreprocessSettings& settings, SampleSet& set) {
+    const bool published = settings.scheme == SampleScheme::Published;
     double edgeLength = 0.0;
     for (const auto& t : object.mesh().triangles)
         edgeLength += glm::length(object.mesh().positions[t[1]] - object.mesh().positions[t[0]]);
     edgeLength /= double(std::max<size_t>(object.mesh().triangles.size(), 1));
     const Vec3 extent = object.mesh().bounds().max - object.mesh().bounds().min;
     const double curvatureStep = std::min(2.0 * edgeLength, 0.25 * std::min({extent.x, extent.y, extent.z}));
-    std::vector<Vec3> positions;
-    std::vector<WeightedSample> weighted;
+    DescribedSamples described;
     for (const auto& d : disks) {
         if (object.insideBlocker(d.position)) continue;
-        positions.push_back(d.position);
+        described.positions.push_back(d.position);
         set.positions.emplace_back(d.position);
         set.radii.push_back(float(d.radius));
         // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
@@ -320,7 +292,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
         Vec3 image = d.position;
         if (!published) {
             if (const auto slab = object.density().slabAround(d.position)) {
-                p.regionAxis = uint32_t(slab->axis);
+                set.parameters.regionAxis = uint32_t(slab->axis);
                 region = glm::vec2(float(std::max(slab->lo, -1e30)), float(std::min(slab->hi, 1e30)));
                 regionKey = std::bit_cast<uint32_t>(region.x);  // one key per slab
             }
@@ -329,34 +301,118 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
         set.region.push_back(region);
         set.image.emplace_back(image);
         set.boundary.push_back(published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep));
-        weighted.push_back({glm::vec3(d.position), glm::vec3(image), width, regionKey});
+        described.weighted.push_back({glm::vec3(d.position), glm::vec3(image), width, regionKey});
     }
-    // Partition-of-unity weights: thesis eq. 3.3 normalised (preprocess/sample_weights.h).
+    return described;
+}
+
+// Partition-of-unity weights: thesis eq. 3.3 normalised (preprocess/sample_weights.h).
+// The Galerkin weights leave the sum of the Gaussians a few per cent off on
+// average (measured +4% on the sphere). Where every layer was sampled, the
+// weighted Gaussians must hold exactly the volume they fill: the object minus
+// its blockers, down to half a spacing under the deepest layer.
+void applyWeights(const VolumeObject& object, const std::vector<WeightedSample>& weighted, const LayerStack& stack,
+                  double shell, bool nothingCulled, const PreprocessSettings& settings, SampleSet& set) {
+    const bool published = settings.scheme == SampleScheme::Published;
     const std::vector<float> weights =
         published ? volumeShareWeights(set.widths, shell) : partitionOfUnityWeights(weighted);
-    // The Galerkin weights leave the sum of the Gaussians a few per cent off on
-    // average (measured +4% on the sphere). Where every layer was sampled, the
-    // weighted Gaussians must hold exactly the volume they fill: the object
-    // minus its blockers, down to half a spacing under the deepest layer.
     double scale = 1.0;
     if (!published && nothingCulled && !weights.empty()) {
-        double sampledVolume = volume;
+        double sampledVolume = std::abs(object.mesh().signedVolume());
         for (const TriangleMesh& blocker : object.blockerMeshes()) sampledVolume -= std::abs(blocker.signedVolume());
-        const std::vector<OffsetLayer> floor = distance.offsetLayers({depths.back() + 0.5 * spacing});
+        const std::vector<OffsetLayer> floor = stack.distance->offsetLayers({stack.depths.back() + 0.5 * stack.spacing});
         if (!floor.empty()) sampledVolume -= std::abs(floor.front().surface.signedVolume());
         double held = 0.0;
         for (size_t i = 0; i < weights.size(); ++i) held += weights[i] * std::pow(2.0 * kPi * double(set.widths[i]) * set.widths[i], 1.5);
         if (sampledVolume > 0.0 && held > 0.0) scale = sampledVolume / held;
     }
     for (size_t i = 0; i < weights.size(); ++i) set.scattering[i] *= float(scale * weights[i]);
+}
 
+}  // namespace
+
+// Thesis Algorithms 1 and 2: layers, heuristic, Poisson disks, SH projection.
+SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings* timings) {
+    PreprocessTimings local;
+    PreprocessTimings& t = timings ? *timings : local;
+    Stopwatch clock;
+    const MediumDesc& medium = object.desc().medium;
+    const TriangleMesh& mesh = object.mesh();
+    if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))
+        throw Error("SH order " + std::to_string(settings.shOrder) + " is out of range (1 to " +
+                    std::to_string(kMaxSampleShOrder) + ")");
+
+    // The most penetrating channel decides how deep light reaches and what is culled.
+    const double minSigmaT = std::min({medium.sigmaT.r, medium.sigmaT.g, medium.sigmaT.b});
+    const double maxDepth = negligibleLightDepth(minSigmaT * object.density().minimum(), settings.cullEpsilon);
+
+    // Mean radius r from the sample count: a maximal Poisson-disk set with spacing r
+    // fills space at about 0.73 / r^3 (random sequential packing at 38% of spheres
+    // of diameter r), over the shell that light reaches.
+    const double shell = std::min(std::abs(mesh.signedVolume()), mesh.area() * maxDepth);
+    double r = std::cbrt(0.726 * shell / std::max(settings.samples, 1));
+
+    // Light that dies within a fraction of the samples' spacing leaves nothing for
+    // Gaussians of that width to resolve: their mass sits mostly where no light is.
+    // There the medium is a sliver under a locally flat surface, whose single
+    // scattering has a closed form (runtime/internal/optically_thick.frag); the
+    // object needs no samples.
+    if (settings.scheme == SampleScheme::Lucent && maxDepth < kOpticallyThickDepthInRadii * r) {
+        std::fprintf(stderr, "lucent: %s: light dies within %.3g, under %.3g sample spacings: optically thick, "
+                     "drawn as the surface's single scattering (no samples)\n", object.desc().name.c_str(), maxDepth,
+                     maxDepth / r);
+        SampleSet set = emptySetFor(object, settings, r);
+        set.parameters.scheme = SampleScheme::OpticallyThick;
+        t.layers = clock.lap();
+        return set;
+    }
+
+    const LayerStack stack = buildLayers(object, settings, r, maxDepth);
+    t.layerCount = stack.layers.size();
+    t.layerVertices = stack.surface.positions.size();
+    t.layers = clock.lap();
+
+    // Density heuristic (thesis 3.2.3), read at every layer vertex.
+    HeuristicSettings heuristic;
+    heuristic.directions = settings.heuristicDirections;
+    heuristic.extinction = minSigmaT;
+    heuristic.cullEpsilon = settings.cullEpsilon;
+    heuristic.seed = settings.seed;
+    HeuristicField heuristicField = sampleFirstMoment(object, *stack.distance, heuristic);
+    t.heuristicRays = heuristicField.raysCast;
+    t.firstMoments = clock.lap();
+    const std::vector<HeuristicPoint> density = densityAtPoints(heuristicField, stack.surface.positions, heuristic);
+    t.divergence = clock.lap();
+
+    const std::vector<double> relativeRadius = relativeRadii(density, settings.scheme);
+    RadiusSurface live;
+    live.positions = stack.surface.positions;
+    for (const auto& tri : stack.surface.triangles)
+        if (!density[tri[0]].culled || !density[tri[1]].culled || !density[tri[2]].culled) live.triangles.push_back(tri);
+    const bool nothingCulled = live.triangles.size() == stack.surface.triangles.size();
+    if (live.triangles.empty())
+        throw Error(object.desc().mesh.string(), "no point inside receives light above the cull threshold");
+    const std::vector<DiskSample> disks = fitPoissonDisks(live, relativeRadius, r, settings, t);
+    t.poissonDisk = clock.lap();
+
+    SampleSet set = emptySetFor(object, settings, r);
+    SampleParameters& p = set.parameters;
+    p.heuristicDirections = uint32_t(settings.heuristicDirections);
+    p.projectionDirections = uint32_t(settings.projectionDirections);
+    p.layerCount = uint32_t(stack.layers.size());
+    p.layerSpacing = float(stack.spacing);
+    p.widthFactor = float(settings.widthFactor);
+    const DescribedSamples described = describeSamples(object, disks, settings, set);
+    applyWeights(object, described.weighted, stack, shell, nothingCulled, settings, set);
+
+    // SH projection of each sample's attenuation (thesis 3.3.1).
     ProjectionSettings projection;
     projection.order = settings.shOrder;
     projection.directions = settings.projectionDirections;
     projection.seed = settings.seed;
-    projection.shadowBlockersAtRuntime = !published;
+    projection.shadowBlockersAtRuntime = settings.scheme != SampleScheme::Published;
     ProjectionResult projected =
-        projectAttenuation(object, positions, set.boundary, projection, int(set.channels));
+        projectAttenuation(object, described.positions, set.boundary, projection, int(set.channels));
     set.sh = std::move(projected.coefficients);
     set.truncationError = std::move(projected.truncationError);
     set.boundary = std::move(projected.balls);

@@ -3,7 +3,8 @@
 // with OpenGL 4.5 creates a ScatteringRenderer on its current context, gives it
 // the translucent objects (mesh + sample set) and the lights, and calls draw()
 // with its framebuffer bound: the renderer adds the objects' reflected surfaces
-// and the light they scatter, occluded by the host's depth.
+// and the light they scatter, occluded by the host's depth. Inside, a frame is
+// the frame targets followed by a list of passes (runtime/internal/render_pass.h).
 #include <memory>
 #include <optional>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "core/triangle_mesh.h"
 #include "core/volume_object.h"
 #include "runtime/gl.h"
+#include "runtime/view_setup.h"
 
 namespace lucent {
 
@@ -24,21 +26,11 @@ struct TranslucentObject {
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
-    Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::Skin)
+    Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
 };
 
 // A scene object with its sample set, as the renderer takes it (both must outlive the renderer).
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples);
-
-struct ViewSetup {
-    glm::mat4 view{1.0f};
-    glm::mat4 projection{1.0f};
-    glm::vec3 cameraPosition{0.0f};
-    int width = 0, height = 0;
-};
-
-// A view and projection matching core's CameraRays for the same camera.
-ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds);
 
 struct DrawOptions {
     bool surface = true;

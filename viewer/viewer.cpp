@@ -15,14 +15,13 @@
 
 #include "core/error.h"
 #include "core/image.h"
-#include "core/sample_set.h"
-#include "core/volume_object.h"
-#include "runtime/embedded_shaders.h"
-#include "runtime/gl_program.h"
+#include "core/loaded_scene.h"
+#include "methods/method_table.h"
+#include "runtime/internal/gl_program.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
-#include "runtime/render_ss.h"
 #include "runtime/scattering_renderer.h"
+#include "viewer/viewer_shaders.h"
 #include "viewer/viewer_state.h"
 
 namespace lucent {
@@ -66,15 +65,6 @@ std::vector<std::string> readScript(const std::filesystem::path& file) {
     if (!in) throw Error(file.string(), "cannot open viewer script");
     for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;
-}
-
-float autoExposure(const Image& image) {
-    std::vector<float> l;
-    for (const auto& p : image.pixels)
-        if (p.g > 0.0f) l.push_back(p.g);
-    if (l.empty()) return 1.0f;
-    std::nth_element(l.begin(), l.begin() + long(0.995 * double(l.size() - 1)), l.end());
-    return 1.0f / l[size_t(0.995 * double(l.size() - 1))];
 }
 
 void lightsPanel(ViewerState& state) {
@@ -128,16 +118,13 @@ void lightsPanel(ViewerState& state) {
 }  // namespace
 
 void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
-    std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
-    for (const auto& w : warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
-    std::vector<SampleSet> samples;
-    Bounds3 bounds;
-    for (const VolumeObject& o : objects) {
-        samples.push_back(loadSamplesFor(o));
-        bounds.extend(o.mesh().bounds().min);
-        bounds.extend(o.mesh().bounds().max);
-    }
+    // The viewer draws with the interactive method of the table, in its own window.
+    const MethodEntry& method = findMethod("ss");
+    if (const std::string why = method.unavailableReason(); !why.empty())
+        throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
+    const LoadedScene loaded = loadScene(scene, method.needsSamples);
+    for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
+    const Bounds3 bounds = loaded.bounds();
     const std::vector<std::string> script = readScript(options.script);
 
     ViewerState state(scene);
@@ -153,12 +140,12 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     ImGui_ImplOpenGL3_Init("#version 450 core");
     {
         ScatteringRenderer renderer;
-        for (size_t i = 0; i < objects.size(); ++i)
-            renderer.addObject(translucentObjectFor(objects[i], samples[i]));
+        for (size_t i = 0; i < loaded.objects.size(); ++i)
+            renderer.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
         std::unique_ptr<OffscreenFrame> frame;
         int frameWidth = 0, frameHeight = 0;
-        GlProgram tonemap{{GL_VERTEX_SHADER, "shaders/fullscreen.vert", shaders::fullscreen_vert},
-                          {GL_FRAGMENT_SHADER, "shaders/tonemap.frag", shaders::tonemap_frag}};
+        GlProgram tonemap{{GL_VERTEX_SHADER, "fullscreen.vert"},
+                          {GL_FRAGMENT_SHADER, "tonemap.frag", viewerShader("tonemap.frag")}};
         GLuint emptyVao;
         glCreateVertexArrays(1, &emptyVao);
         double frameMs = 0.0;
@@ -236,7 +223,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
             ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
             ImGui::Begin("Lucent");
-            ImGui::Text("%.1f ms per frame, %zu samples", frameMs, renderer.sampleCount());
+            ImGui::Text("method %s: %.1f ms per frame, %zu samples", method.name.c_str(), frameMs, renderer.sampleCount());
             ImGui::Checkbox("surface", &state.surface);
             ImGui::SameLine();
             ImGui::Checkbox("scattering", &state.scattering);

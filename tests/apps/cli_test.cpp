@@ -156,6 +156,34 @@ TEST_F(BadInput, ShOrderBeyondWhatTheRuntimeEvaluates) {
     expectFailure("preprocess " + dir.write("scene.json", "{}").string() + " --sh-order 9", "--sh-order");
 }
 
+TEST_F(BadInput, SceneNamesAMethodThisBuildLacks) {
+    std::string text = scene((test::modelsDir() / "sphere.obj").string());
+    text.insert(text.rfind('}'), R"(, "render": {"method": "lbl"})");
+    expectFailure("render " + dir.write("scene.json", text).string() + " -o " + (dir.path() / "img.png").string(),
+                  "scene.json: /render/method: method 'lbl' is not built into this binary (built: ss, reference, auto)",
+                  "img.png");
+}
+
+TEST(Cli, HelpOffersOnlyTheMethodsThisBuildHas) {
+    const auto help = test::runLucent("render --help");
+    ASSERT_EQ(help.exitCode, 0) << help.stderrText;
+    EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,auto}"), std::string::npos) << help.stdoutText;
+    for (const char* absent : {"lbl", "mdom", "path:"})
+        EXPECT_EQ(help.stdoutText.find(absent), std::string::npos) << absent;
+}
+
+TEST(Cli, AutoSaysWhatItChoseAndWhy) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
+    const auto run = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.pfm").string() +
+                                     " --method auto --width 8 --height 8");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_NE(run.stderrText.find("method ss on "), std::string::npos) << run.stderrText;
+    EXPECT_NE(run.stderrText.find(", chosen by auto: the only interactive method built)"), std::string::npos)
+        << run.stderrText;
+}
+
 TEST(Cli, PreprocessThenInfo) {
     test::ScratchDir dir;
     const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));

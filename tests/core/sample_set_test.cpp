@@ -85,11 +85,11 @@ TEST(SampleFile, RoundTrips) {
 TEST(SampleFile, SkinsHoldNoSamples) {
     test::ScratchDir dir;
     SampleSet skin = makeSamples(0);
-    skin.parameters.scheme = SampleScheme::Skin;
+    skin.parameters.scheme = SampleScheme::OpticallyThick;
     writeSampleFile(dir.path() / "skin.lsf", skin);
     const SampleSet r = readSampleFile(dir.path() / "skin.lsf");
     EXPECT_EQ(r.size(), 0u);
-    EXPECT_EQ(r.parameters.scheme, SampleScheme::Skin);
+    EXPECT_EQ(r.parameters.scheme, SampleScheme::OpticallyThick);
 }
 
 TEST(SampleFile, RejectsDamagedFiles) {

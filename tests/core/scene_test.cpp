@@ -73,7 +73,6 @@ TEST(Scene, ErrorsNameFileAndJsonPath) {
         {"\"type\": \"point\"", "\"type\": \"spot\"", "dir/scene.json: /lights/0/type: unknown light type"},
         {"\"values\": [1, 2]", "\"values\": [1, -2]", "dir/scene.json: /objects/0/medium/density/values/1: must be non-negative"},
         {"\"direction\": [0, -2, 0]", "\"direction\": [0, 0, 0]", "/lights/1/direction: must not be the zero vector"},
-        {"\"method\": \"reference\"", "\"method\": \"magic\"", "/render/method: unknown method 'magic'"},
         {"\"position\": [0, 0, 5]", "\"position\": [0, 0, 1e999]", "dir/scene.json: malformed JSON"},
         {"\"samples\": \"sphere.lsf\"}]", "\"samples\": \"sphere.lsf\"}", "dir/scene.json: malformed JSON"},
     };

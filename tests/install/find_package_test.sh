@@ -1,13 +1,46 @@
 #!/usr/bin/env bash
-# Installs Lucent into a scratch prefix and builds examples/ against it with
-# find_package(Lucent), as a host project would.
+# Installs Lucent into a scratch prefix, checks that only the public headers are
+# installed, builds examples/ against it with find_package(Lucent) as a host
+# project would, and runs that host on a scene preprocessed by the installed
+# lucent (which must find its own data beside itself, not in a checkout).
 set -euo pipefail
 build_dir=$1
 source_dir=$2
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
-cmake --install "$build_dir" --prefix "$scratch/prefix" > /dev/null
-cmake -S "$source_dir/examples" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$scratch/prefix" -DCMAKE_BUILD_TYPE=Release > /dev/null
+prefix=$scratch/prefix
+cmake --install "$build_dir" --prefix "$prefix" > /dev/null
+
+# Public headers only: nothing of runtime/internal, and each public runtime header
+# compiles on its own from the installed include directory.
+if [ -e "$prefix/include/lucent/runtime/internal" ]; then
+  echo "FAIL: the runtime's private headers were installed"; exit 1
+fi
+for header in "$prefix"/include/lucent/runtime/*.h; do
+  echo "#include \"runtime/$(basename "$header")\"" |
+    g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" -x c++ - ||
+    { echo "FAIL: $header does not compile on its own"; exit 1; }
+done
+test -f "$prefix/share/lucent/plot-accuracy.py" || { echo "FAIL: plot-accuracy.py not installed"; exit 1; }
+
+cmake -S "$source_dir/examples" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$scratch/build" -j2 > /dev/null
 test -x "$scratch/build/lucent-example-host"
-echo "find_package(Lucent) from an installed prefix: example host built"
+
+cat > "$scratch/scene.json" <<JSON
+{"camera": {"position": [0, 0.6, 5], "target": [0, 0, 0], "fov_y": 35, "width": 32, "height": 32},
+ "lights": [{"type": "point", "position": [3, 3, 3], "intensity": [40, 40, 40]}],
+ "objects": [{"mesh": "$source_dir/models/sphere.obj", "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}]}
+JSON
+"$prefix/bin/lucent" preprocess "$scratch/scene.json" --quality draft --samples 1000 2> /dev/null
+"$scratch/build/lucent-example-host" "$scratch/scene.json" "$scratch/out.pfm" --no-occluder 2> /dev/null
+# The host's image: a 32x32 PFM whose brightest pixel is the sphere's light (not 0).
+python3 - "$scratch/out.pfm" <<'PY'
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+header = data.split(b'\n', 3)
+assert header[0] == b'PF' and header[1].split() == [b'32', b'32'], header[:2]
+pixels = struct.unpack('<%df' % (32 * 32 * 3), header[3])
+assert max(pixels) > 0.0, 'black image'
+PY
+echo "find_package(Lucent) from an installed prefix: public headers only, example host built and run"

@@ -117,7 +117,7 @@ TEST(Preprocessor, OpticallyThickObjectsAreSkins) {
     std::vector<std::string> warnings;
     const VolumeObject thick(test::simpleObject(test::modelsDir() / "sphere.obj", 1e3, 0.75), warnings);
     const SampleSet skin = preprocessObject(thick, small());
-    EXPECT_EQ(skin.parameters.scheme, SampleScheme::Skin);
+    EXPECT_EQ(skin.parameters.scheme, SampleScheme::OpticallyThick);
     EXPECT_EQ(skin.size(), 0u);
     const VolumeObject thin(test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75), warnings);
     EXPECT_EQ(preprocessObject(thin, small()).parameters.scheme, SampleScheme::Lucent);

@@ -1,6 +1,6 @@
 // The Lucent scheme's blockers: psi is projected with them filled by the medium
 // and the runtime shadows each light with their shadow maps
-// (runtime/blocker_shadows.h). In the torus cube, where the reference says the
+// (runtime/internal/blocker_shadows.h). In the torus cube, where the reference says the
 // torus's shadow takes most of the light (pixels at under 0.6 of the same cube
 // without the torus), ss must be as dark as the reference; without the maps it
 // is about three times brighter there.
@@ -9,7 +9,7 @@
 #include "core/sample_set.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/render_ss.h"
+#include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -35,9 +35,7 @@ void expectShadowMatchesTheReference(const Light& light) {
     PreprocessSettings settings = qualityPreset("default");
     settings.samples = 20000;
     for (const auto& o : objects) writeSampleFile(o.desc().samples, preprocessObject(o, settings));
-    SsSettings ss;
-    ss.surface = false;
-    const Image lucent = renderSingleScattering(scene, objects, ss);
+    const Image lucent = test::renderSs(scene, false);
     const Image shadowed = reference(scene);
     SceneDesc open = scene;
     for (auto& o : open.objects) o.medium.blockers.clear();

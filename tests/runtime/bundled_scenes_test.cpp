@@ -8,7 +8,7 @@
 #include "core/sample_set.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/render_ss.h"
+#include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -34,9 +34,7 @@ TEST_P(BundledScene, AgreesWithTheReference) {
     ReferenceSettings reference;
     reference.tolerance = 1e-4;
     reference.surface = false;
-    SsSettings ss;
-    ss.surface = false;
-    const ImageError e = compareImages(renderSingleScattering(scene, objects, ss),
+    const ImageError e = compareImages(test::renderSs(scene, false),
                                        ReferenceRenderer(scene, objects).render(reference));
     std::printf("%s: relative RMSE %.4f, MARE %.4f, mean ratio %.4f\n", bound.scene, e.relativeRmse,
                 e.meanAbsoluteRelativeError, e.meanRatio);

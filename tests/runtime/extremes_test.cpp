@@ -12,7 +12,7 @@
 #include "core/image_compare.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/render_ss.h"
+#include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -75,7 +75,7 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     }
     writeSampleFile(o.samples, set);
     Render r;
-    r.ss = renderSingleScattering(scene, objects, SsSettings{GlBackend::Auto, false});
+    r.ss = test::renderSs(scene, false);
     ReferenceSettings reference;
     reference.surface = false;
     reference.tolerance = 1e-3;
@@ -129,7 +129,7 @@ TEST(Extremes, VanishingExtinction) {
 
 TEST(Extremes, EnormousExtinction) {
     // Light dies within 0.05 and 5e-4 of the surface, far inside one Gaussian:
-    // the preprocessor makes the sphere a skin (SampleScheme::Skin), whose closed
+    // the preprocessor makes the sphere a skin (SampleScheme::OpticallyThick), whose closed
     // form is exact under a plane; the sphere's curvature costs a few per cent.
     for (double sigmaT : {1e2, 1e4}) {
         test::ScratchDir dir;

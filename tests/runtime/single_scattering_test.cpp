@@ -11,9 +11,9 @@
 #include "core/sample_set.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/gl_program.h"
+#include "runtime/internal/gl_program.h"
 #include "runtime/offscreen_context.h"
-#include "runtime/render_ss.h"
+#include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -48,11 +48,7 @@ struct SphereScene {
         settings.tolerance = 1e-4;
         return ReferenceRenderer(scene, objects).render(settings);
     }
-    Image ss(GlBackend backend = GlBackend::Auto) const {
-        SsSettings settings;
-        settings.backend = backend;
-        return renderSingleScattering(scene, objects, settings);
-    }
+    Image ss(const std::string& backend = "") const { return test::renderSs(scene, true, backend); }
     SceneDesc scene;
     std::vector<VolumeObject> objects;
 };
@@ -111,7 +107,7 @@ TEST(SingleScattering, OsmesaAndEglGiveTheSameImage) {
     PreprocessSettings s = qualityPreset("draft");
     s.samples = 2000;
     sphere.preprocess(s);
-    const Image a = sphere.ss(GlBackend::OSMesa), b = sphere.ss(GlBackend::Egl);
+    const Image a = sphere.ss("osmesa"), b = sphere.ss("egl");
     float peak = 0.0f, worst = 0.0f;
     for (size_t i = 0; i < a.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
@@ -159,11 +155,11 @@ TEST(SingleScattering, RejectsASampleFileOfAnotherObject) {
 TEST(SingleScattering, ShaderCompileErrorsShowTheGlslLog) {
     const auto context = OffscreenContext::create(GlBackend::Auto);
     try {
-        GlProgram broken{{GL_FRAGMENT_SHADER, "shaders/broken.frag", "#version 450 core\nvoid main() { undefined(); }\n"}};
+        GlProgram broken{{GL_FRAGMENT_SHADER, "broken.frag", "#version 450 core\nvoid main() { undefined(); }\n"}};
         FAIL();
     } catch (const Error& e) {
         const std::string message = e.what();
-        EXPECT_EQ(message.rfind("shaders/broken.frag: GLSL compile error: ", 0), 0u) << message;
+        EXPECT_EQ(message.rfind("broken.frag: GLSL compile error: ", 0), 0u) << message;
         EXPECT_NE(message.find("undefined"), std::string::npos) << message;
         EXPECT_EQ(message.find('\n'), std::string::npos);
     }

@@ -43,14 +43,17 @@ ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double
 
 RunResult runLucent(const std::string& args, const std::string& environment) {
     ScratchDir scratch;
-    const auto errFile = scratch.path() / "stderr.txt";
-    const std::string command =
-        environment + " " + std::string(LUCENT_BINARY) + " " + args + " > /dev/null 2> " + errFile.string();
+    const auto errFile = scratch.path() / "stderr.txt", outFile = scratch.path() / "stdout.txt";
+    const std::string command = environment + " " + std::string(LUCENT_BINARY) + " " + args + " > " +
+                                outFile.string() + " 2> " + errFile.string();
     const int status = std::system(command.c_str());
-    std::ifstream in(errFile);
-    std::stringstream text;
-    text << in.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+    auto read = [](const std::filesystem::path& file) {
+        std::ifstream in(file);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    };
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(errFile), read(outFile)};
 }
 
 std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file) {

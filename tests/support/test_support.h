@@ -29,10 +29,11 @@ std::filesystem::path dataDir();
 // The ObjectDesc for a mesh with a constant medium, fingerprint left 0.
 ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo = 0.5);
 
-// Runs build/bin/lucent with args; captures the exit code and stderr.
+// Runs build/bin/lucent with args; captures the exit code, stderr and stdout.
 struct RunResult {
     int exitCode;
     std::string stderrText;
+    std::string stdoutText;
 };
 RunResult runLucent(const std::string& args, const std::string& environment = "");
 

@@ -1,0 +1,18 @@
+#pragma once
+// Runs a helper program without a shell: an argument vector, so no character of
+// a path or an option can become a command.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lucent {
+
+// Runs argv[0] (looked up on PATH) with argv, waits, and returns its exit code;
+// throws Error when it cannot be started or dies by a signal.
+int runProgram(const std::vector<std::string>& argv);
+
+// A file Lucent installs beside its binary: <directory of this executable>/../share/lucent/name
+// (the build tree has the same layout). Throws Error naming the path if it is not there.
+std::filesystem::path installedDataFile(const std::string& name);
+
+}  // namespace lucent

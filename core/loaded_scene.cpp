@@ -1,0 +1,48 @@
+#include "core/loaded_scene.h"
+
+#include <utility>
+
+#include "core/error.h"
+
+namespace lucent {
+
+Bounds3 LoadedScene::bounds() const {
+    Bounds3 b;
+    for (const VolumeObject& o : objects) {
+        b.extend(o.mesh().bounds().min);
+        b.extend(o.mesh().bounds().max);
+    }
+    return b;
+}
+
+SampleSet checkSamplesBelong(const VolumeObject& object, SampleSet samples, const std::string& origin) {
+    if (samples.sceneFingerprint != object.desc().fingerprint)
+        throw Error(origin, "sample file was made for a different mesh or medium than object '" + object.desc().name +
+                                "'; run lucent preprocess again");
+    return samples;
+}
+
+LoadedScene loadScene(const SceneDesc& desc, bool withSampleFiles) {
+    LoadedScene scene;
+    scene.desc = desc;
+    scene.objects = loadObjects(scene.desc, scene.warnings);
+    if (withSampleFiles) {
+        std::vector<SampleSet> samples;
+        for (const VolumeObject& o : scene.objects)
+            samples.push_back(checkSamplesBelong(o, readSampleFile(o.desc().samples), o.desc().samples.string()));
+        scene.samples = std::move(samples);
+    }
+    return scene;
+}
+
+void attachSamples(LoadedScene& scene, std::vector<SampleSet> samples) {
+    if (samples.size() != scene.objects.size())
+        throw Error(scene.desc.file.string(), "got " + std::to_string(samples.size()) + " sample sets for " +
+                                                  std::to_string(scene.objects.size()) + " objects");
+    for (size_t i = 0; i < samples.size(); ++i)
+        samples[i] = checkSamplesBelong(scene.objects[i], std::move(samples[i]),
+                                        "in-memory samples of " + scene.objects[i].desc().name);
+    scene.samples = std::move(samples);
+}
+
+}  // namespace lucent

@@ -1,0 +1,46 @@
+#pragma once
+// The one interface of every rendering method (pbrt-v4's Integrator, here for a
+// whole frame): a loaded scene and settings in, a linear radiance image out.
+// Each stage implements it in its own folder (reference/, runtime/, later
+// hybrid/); methods/method_table.cpp lists them, with their factories, for the
+// command line, the viewer and the benchmarks.
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/image.h"
+#include "core/loaded_scene.h"
+
+namespace lucent {
+
+// What a caller may ask of any method; each method reads the fields it knows.
+struct MethodSettings {
+    bool surface = true;     // add the reflected surface term of objects that have one
+    int threads = 0;         // CPU methods: worker threads (0: all cores)
+    double tolerance = 1e-3; // quadrature methods: relative error target per pixel
+    std::string backend;     // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
+    double cutoff = 1e-4;    // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
+};
+
+class Method {
+public:
+    virtual ~Method() = default;
+    // The scene as loadScene gives it, with sample sets when the method's entry
+    // says it needs them. Throws Error for what the method cannot do.
+    virtual Image render(const LoadedScene& scene, const MethodSettings& settings) = 0;
+    // What served the last render, for messages (an OpenGL backend, a device); may be empty.
+    virtual std::string servedBy() const { return {}; }
+};
+
+// One row of the method table.
+struct MethodEntry {
+    std::string name;     // what --method takes
+    std::string summary;  // one line for --help and docs
+    bool needsSamples = false;  // reads the objects' sample files (lucent preprocess first)
+    bool interactive = false;   // fast enough for the viewer and for auto
+    // Why the method cannot run here (no device, no driver), or empty when it can.
+    std::function<std::string()> unavailableReason;
+    std::function<std::unique_ptr<Method>()> create;
+};
+
+}  // namespace lucent

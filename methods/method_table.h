@@ -1,0 +1,40 @@
+#pragma once
+// Every rendering method built into this binary, with its factory: the one list
+// the command line, the viewer and the benchmarks read. A new method is a folder
+// of its own implementing core/method.h plus one row in method_table.cpp.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/method.h"
+#include "core/scene.h"
+
+namespace lucent {
+
+// The methods this build has, in the order --help lists them.
+const std::vector<MethodEntry>& methodTable();
+// Their names, then "auto".
+std::vector<std::string> methodNames();
+// The entry called name; Error listing the built methods otherwise.
+const MethodEntry& findMethod(const std::string& name);
+
+// What --method auto picks for a scene, and why (printed to the user).
+struct MethodChoice {
+    std::string method;
+    std::string reason;
+};
+MethodChoice chooseMethod(const SceneDesc& scene);
+
+// Resolves "auto" and checks availability: the entry to run and, for auto, why.
+struct ResolvedMethod {
+    const MethodEntry* entry = nullptr;
+    std::string reason;  // empty unless chosen by auto
+};
+ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene);
+
+// Loads what the method needs (sample files only for those that draw from them),
+// creates it and renders. servedBy receives what served the frame, if asked.
+Image renderWith(const MethodEntry& entry, const LoadedScene& scene, const MethodSettings& settings,
+                 std::string* servedBy = nullptr);
+
+}  // namespace lucent

@@ -1,0 +1,27 @@
+#pragma once
+// Where the blocker shadow maps look from (blocker_shadows.h): pure geometry,
+// tested without GL.
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/math.h"
+#include "core/scene.h"
+
+namespace lucent {
+
+// Layers of the distance texture: six per light (one used by a directional light), at least six.
+int blockerShadowLayers(size_t lightCount);
+
+// Texels per side of each layer: 512 up to 4 lights, then fewer so that the
+// maps stay within about 25 MB up to 256 lights; never fewer than 64.
+int blockerShadowResolution(size_t lightCount);
+
+// The view-projection of each layer: around a point light the six 90-degree
+// cube faces +x, -x, +y, -y, +z, -z (2 * axis + negative), each reaching past
+// the blockers' bounding sphere; along a directional light one orthographic view
+// enclosing that sphere. Unused layers hold the identity.
+std::vector<glm::mat4> blockerShadowViews(const std::vector<Light>& lights, const Bounds3& blockerBounds);
+
+}  // namespace lucent

@@ -1,0 +1,58 @@
+#pragma once
+// The targets every pass of a frame reads (thesis 3.4.1): the host's depth with
+// the opaque blockers drawn in, the nearest front face and the farthest back face
+// of the translucent meshes, and each pixel's ray segment [t0, t1] inside them.
+#include "runtime/gl.h"
+#include "runtime/internal/gl_program.h"
+#include "runtime/internal/render_pass.h"
+
+namespace lucent {
+
+// A framebuffer with one texture the passes sample: a depth texture
+// (GL_DEPTH_COMPONENT32F) or a colour one (the RG32F ray segments).
+class TextureTarget {
+public:
+    explicit TextureTarget(GLenum textureFormat) : format_(textureFormat) {}
+    ~TextureTarget() { release(); }
+    TextureTarget(const TextureTarget&) = delete;
+    TextureTarget& operator=(const TextureTarget&) = delete;
+    void resize(int width, int height);
+    void clearDepth(float depth) const { glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &depth); }
+    GLuint framebuffer() const { return framebuffer_; }
+    GLuint texture() const { return texture_; }
+
+private:
+    bool isDepth() const { return format_ == GL_DEPTH_COMPONENT32F; }
+    void release();
+    GLenum format_;
+    GLuint framebuffer_ = 0, texture_ = 0;
+    int width_ = 0, height_ = 0;
+};
+
+class FrameTargets {
+public:
+    FrameTargets();
+    ~FrameTargets();
+    FrameTargets(const FrameTargets&) = delete;
+    FrameTargets& operator=(const FrameTargets&) = delete;
+
+    // Draws the targets for this frame; leaves depth testing on with GL_LESS,
+    // back faces culled and the last target bound.
+    void draw(const FrameContext& frame);
+    // Draws every object's boundary mesh.
+    static void drawMeshes(const FrameContext& frame);
+
+    GLuint frontDepth() const { return front_.texture(); }
+    GLuint raySegments() const { return segments_.texture(); }
+    GLuint emptyVertexArray() const { return emptyVao_; }
+
+private:
+    GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
+    GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
+    GlProgram segmentProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}};
+    TextureTarget front_{GL_DEPTH_COMPONENT32F}, back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
+    TextureTarget segments_{GL_RG32F};
+    GLuint emptyVao_ = 0;
+};
+
+}  // namespace lucent

@@ -1,0 +1,59 @@
+// The layouts the GPU sees, declared once for C++ and GLSL (Filament's way):
+// C++ includes this header; every shader that needs it says
+// `#include "gpu_layout.h"`, which the runtime resolves from the embedded copy
+// (runtime/internal/shader_source.h). Only what both languages parse goes here:
+// structs of vec4/mat4 (std430 lays them out as C++ does) and integer constants.
+#ifndef LUCENT_GPU_LAYOUT_H
+#define LUCENT_GPU_LAYOUT_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace lucent::gpu {
+using glm::mat4;
+using glm::vec4;
+#define LUCENT_GPU_CONSTANT(name, value) inline constexpr int name = value;
+#else
+#define LUCENT_GPU_CONSTANT(name, value) const int name = value;
+#endif
+
+// Shader storage buffer bindings.
+LUCENT_GPU_CONSTANT(kBindingSamples, 0)       // Sample[]: one object's samples
+LUCENT_GPU_CONSTANT(kBindingLights, 1)        // Light[]: the scene's lights
+LUCENT_GPU_CONSTANT(kBindingCoefficients, 2)  // float[]: SH coefficients [sample][channel][coefficient]
+LUCENT_GPU_CONSTANT(kBindingReceived, 3)      // Received[]: the cached light each sample receives
+LUCENT_GPU_CONSTANT(kBindingShadowViews, 4)   // mat4[]: view-projection of each blocker shadow layer
+
+// Texture units of the sample programs.
+LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the objects
+LUCENT_GPU_CONSTANT(kUnitShadowDistances, 1)  // blocker distance maps (runtime/internal/blocker_shadows.h)
+
+struct Light {
+    vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel
+    vec4 power;     // rgb: intensity (W/sr) or irradiance (W/m^2)
+};
+
+struct Sample {
+    vec4 centreWidth;  // world-space centre, Gaussian standard deviation
+    vec4 scattering;   // sigma_s times the partition-of-unity weight, per channel
+    vec4 extinction;   // sigma_t at the centre, per channel
+    vec4 region;       // [lo, hi] of its density slab along regionAxis; the ball's curvature, share
+    vec4 image;        // the centre mirrored across the nearest boundary of its region
+    vec4 ball;         // its boundary ball (core/sample_set.h): outward normal, depth (< 0: none)
+};
+
+// What a sample receives from the lights (runtime/internal/sample_light.glsl).
+struct Received {
+    vec4 light;         // sum_j p E_j psi_i(w_j)
+    vec4 towardLights;  // sum_j share_j w_j
+    vec4 falloff;       // sum_j share_j 2 w_j / r_j (point lights)
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(Light) == 2 * sizeof(vec4));
+static_assert(sizeof(Sample) == 6 * sizeof(vec4));
+static_assert(sizeof(Received) == 3 * sizeof(vec4));
+}  // namespace lucent::gpu
+#endif
+#undef LUCENT_GPU_CONSTANT
+
+#endif

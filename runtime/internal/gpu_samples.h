@@ -1,0 +1,45 @@
+#pragma once
+// A sample set on the GPU: the Sample records and SH coefficients of
+// gpu_layout.h in shader storage buffers, room for the light each sample
+// receives, and the slab table of its density; one point per sample.
+#include <vector>
+
+#include "core/sample_set.h"
+#include "runtime/gl.h"
+#include "runtime/internal/sample_packing.h"
+
+namespace lucent {
+
+class GpuSamples {
+public:
+    explicit GpuSamples(const SampleSet& samples);
+    ~GpuSamples();
+    GpuSamples(const GpuSamples&) = delete;
+    GpuSamples& operator=(const GpuSamples&) = delete;
+
+    // Binds the sample, coefficient and received-light buffers (gpu_layout.h).
+    void bind() const;
+    // One point per sample (buffers bound).
+    void draw() const;
+    // Runs the bound compute program over the samples, filling the received light.
+    void computeReceived() const;
+    // Whether the received-light buffer holds the light of the current lights and scale.
+    bool receivedValid = false;
+    float receivedScale = 0.0f;
+    int shOrder() const { return shOrder_; }
+    int channels() const { return channels_; }
+    size_t size() const { return count_; }
+    const SampleParameters& parameters() const { return parameters_; }
+    bool homogeneous() const { return homogeneous_; }
+    const SlabTable& slabs() const { return slabs_; }
+
+private:
+    GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
+    size_t count_ = 0;
+    int shOrder_ = 0, channels_ = 1;
+    SampleParameters parameters_;
+    bool homogeneous_ = true;
+    SlabTable slabs_;
+};
+
+}  // namespace lucent

@@ -1,0 +1,66 @@
+#pragma once
+// The frame as a small composer over passes (runtime/scattering_renderer.cpp):
+// the frame targets first (frame_targets.h), then each pass in order, every one
+// adding light to the host's framebuffer. A new kind of light (a multiple-
+// scattering grid, say) is one more RenderPass; nothing else changes.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/mesh_raycaster.h"
+#include "core/scene.h"
+#include "runtime/gl.h"
+#include "runtime/internal/blocker_shadows.h"
+#include "runtime/internal/gpu_mesh.h"
+#include "runtime/internal/gpu_samples.h"
+#include "runtime/scattering_renderer.h"
+#include "runtime/view_setup.h"
+
+namespace lucent {
+
+class FrameTargets;
+
+// One translucent object as the passes hold it on the GPU.
+struct GpuObject {
+    std::unique_ptr<GpuMesh> mesh;
+    std::unique_ptr<GpuSamples> samples;
+    double g = 0.0;
+    std::optional<SurfaceDesc> surface;
+    std::vector<std::unique_ptr<GpuMesh>> blockers;
+    std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside?
+    std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
+    bool shadowsValid = false;
+    Rgb albedo{0.0};
+    bool opticallyThick = false;  // drawn in closed form by optically_thick.frag, no samples
+};
+
+// The scene's lights in the kBindingLights buffer.
+struct GpuLights {
+    GLuint buffer = 0;
+    int count = 0;
+    std::vector<Light> lights;
+};
+
+// What every pass of one frame sees.
+struct FrameContext {
+    const ViewSetup& view;
+    const DrawOptions& options;
+    std::vector<GpuObject>& objects;
+    const GpuLights& lights;
+    const FrameTargets& targets;
+    glm::mat4 viewProjection;
+};
+
+class RenderPass {
+public:
+    virtual ~RenderPass() = default;
+    // Offscreen work before the frame targets are drawn (shadow maps, caches).
+    // May leave any framebuffer, viewport and blending bound.
+    virtual void prepare(FrameContext&) {}
+    // Adds this pass's light to the host's framebuffer (bound, viewport set).
+    virtual void draw(FrameContext& frame) = 0;
+};
+
+}  // namespace lucent

@@ -1,0 +1,195 @@
+// Included by scatter.vert and received.comp: the sample and light buffers, the SH expansion of
+// each sample's attenuation, and the light a sample receives.
+#include "gpu_layout.h"
+layout(std430, binding = kBindingSamples) readonly buffer Samples { Sample samples[]; };
+layout(std430, binding = kBindingLights) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = kBindingCoefficients) readonly buffer Coefficients { float sh[]; };
+
+uniform int lightCount;
+uniform int shOrder;   // bands, at most 8
+uniform int channels;  // 1 (grey sigma_t) or 3
+uniform float g;       // Henyey-Greenstein mean cosine
+uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi becomes psi^k
+
+const float PI = 3.14159265358979;
+
+// Blocker shadows (runtime/internal/blocker_shadows.h), for samples whose psi leaves the
+// blockers out: per light j, layers 6j..6j+5 hold the distance along its rays to
+// the nearest blocker, with each layer's view-projection in shadowViews.
+uniform bool blockerShadows;
+uniform sampler2DArray shadowDistances;
+layout(std430, binding = kBindingShadowViews) readonly buffer ShadowViews { mat4 shadowViews[]; };
+
+// How far along light j's rays x lies, as blocker_distance.frag measures it.
+float distanceAlongLight(int j, vec3 x) {
+    vec4 l = lights[j].position;
+    return l.w > 0.5 ? distance(x, l.xyz) : dot(x, l.xyz);
+}
+
+// The fraction of light j that reaches x past the blockers. A 2x2 percentage-
+// closer filter moves the shadow's edge smoothly between texels; the bias of two
+// texels keeps a sample in front of a blocker lit however steeply the blocker's
+// surface faces away from the light within one texel.
+float blockerVisibility(int j, vec3 x) {
+    if (!blockerShadows) return 1.0;
+    vec4 l = lights[j].position;
+    int layer = 6 * j;
+    if (l.w > 0.5) {
+        vec3 d = x - l.xyz, a = abs(d);
+        int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+        layer += 2 * axis + (d[axis] < 0.0 ? 1 : 0);
+    }
+    mat4 m = shadowViews[layer];
+    vec4 clip = m * vec4(x, 1.0);
+    if (clip.w <= 0.0) return 1.0;
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+    ivec2 size = textureSize(shadowDistances, 0).xy;
+    float own = distanceAlongLight(j, x);
+    // World size of a texel: the map spans 2 / |row 0| at unit distance (point) or in all (directional).
+    float texel = 2.0 / (float(size.x) * length(vec3(m[0][0], m[1][0], m[2][0])));
+    float bias = 2.0 * texel * (l.w > 0.5 ? own : 1.0);
+    vec2 st = uv * vec2(size) - 0.5;
+    ivec2 base = ivec2(floor(st));
+    vec2 f = st - vec2(base);
+    float lit[4];
+    for (int k = 0; k < 4; ++k) {
+        ivec2 p = clamp(base + ivec2(k & 1, k >> 1), ivec2(0), size - 1);
+        lit[k] = own <= texelFetch(shadowDistances, ivec3(p, layer), 0).r + bias ? 1.0 : 0.0;
+    }
+    return mix(mix(lit[0], lit[1], f.x), mix(lit[2], lit[3], f.x), f.y);
+}
+uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
+
+// Distance out of the sample's boundary ball along d (preprocess/sh_projection.cpp,
+// ballExitDistance), negative when d never leaves it.
+float ballExitDistance(int sampleIndex, vec3 d) {
+    vec4 ball = samples[sampleIndex].ball;
+    float cosine = dot(d, ball.xyz), depth = ball.w, curvature = samples[sampleIndex].region.z;
+    if (curvature <= 0.0) return cosine > 0.0 ? depth / cosine : -1.0;
+    float kd = min(curvature * depth, 1.0);
+    float a = (1.0 - kd) * cosine, b = kd * (2.0 - kd);
+    float root = sqrt(a * a + b);
+    if (a >= 0.0) return a + root > 0.0 ? depth * (2.0 - kd) / (a + root) : -1.0;
+    return (root - a) / curvature;
+}
+
+// Its share of the ball's transmittance along d: the part of psi_i the SH do not hold.
+vec3 ballTransmittance(int sampleIndex, vec3 d) {
+    float share = samples[sampleIndex].region.w;
+    if (samples[sampleIndex].ball.w < 0.0 || share <= 0.0) return vec3(0.0);
+    float s = ballExitDistance(sampleIndex, d);
+    return s < 0.0 ? vec3(0.0) : share * exp(-samples[sampleIndex].extinction.rgb * s);
+}
+
+// psi_i(d) per channel, clamped to the range a transmittance can take: the
+// half-space transmittance plus the SH expansion of the rest (real SH with the
+// Condon-Shortley phase, as core/spherical_harmonics.cpp) summed on the fly,
+// without storing the basis.
+vec3 attenuation(int sampleIndex, vec3 d) {
+    int n = shOrder * shOrder;
+    int base = sampleIndex * channels * n;
+    vec3 psi = vec3(0.0);
+    float cm = 1.0, sm = 0.0, qmm = 1.0;
+    for (int m = 0; m < shOrder; ++m) {
+        float q2 = 0.0, q1 = qmm;
+        for (int l = m; l < shOrder; ++l) {
+            float q;
+            if (l == m) q = qmm;
+            else if (l == m + 1) q = d.z * (2.0 * m + 1.0) * qmm;
+            else q = ((2.0 * l - 1.0) * d.z * q1 - (l + m - 1.0) * q2) / float(l - m);
+            if (l > m) { q2 = q1; q1 = q; }
+            float kq = shNormalisation[l * l + l + m] * q;
+            int plus = base + l * l + l + m, minus = base + l * l + l - m;
+            if (m == 0) {
+                psi.r += sh[plus] * kq;
+                if (channels == 3) {
+                    psi.g += sh[plus + n] * kq;
+                    psi.b += sh[plus + 2 * n] * kq;
+                }
+            } else {
+                float c = kq * cm, s = kq * sm;
+                psi.r += sh[plus] * c + sh[minus] * s;
+                if (channels == 3) {
+                    psi.g += sh[plus + n] * c + sh[minus + n] * s;
+                    psi.b += sh[plus + 2 * n] * c + sh[minus + 2 * n] * s;
+                }
+            }
+        }
+        float c = cm * d.x - sm * d.y, s = cm * d.y + sm * d.x;
+        cm = c;
+        sm = s;
+        qmm *= -(2.0 * m + 1.0);
+    }
+    if (channels == 1) psi = vec3(psi.r);
+    psi = clamp(psi + ballTransmittance(sampleIndex, d), 0.0, 1.0);
+    return extinctionScale == 1.0 ? psi : pow(psi, vec3(extinctionScale));
+}
+
+float henyeyGreenstein(float cosTheta) {
+    float denom = max(1.0 + g * g - 2.0 * g * cosTheta, 1e-6);
+    return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
+}
+
+// Minus the gradient of the path length to the boundary along w, the direction
+// in which the optical depth towards that light falls fastest, per unit sigma_t.
+// Out of the boundary ball, through the point e where w leaves it, it is
+// m / (w . m) with m the ball's normal at e: at grazing light the light falls off
+// with depth far faster than along w. The part of psi the SH hold has an unknown
+// exit, and takes w, the derivative only along w. The two are weighted by their
+// share of psi (the log-gradient of a sum).
+vec3 pathGradient(int i, vec3 w, float psi) {
+    vec4 ball = samples[i].ball;
+    float s = ballExitDistance(i, w);
+    if (ball.w < 0.0 || s < 0.0 || psi <= 0.0) return w;
+    // m at e = b + s w: from the ball's centre b + (1/curvature - depth) (-n), or n when flat.
+    float curvature = samples[i].region.z;
+    vec3 m = curvature > 0.0 ? normalize((1.0 - curvature * ball.w) * ball.xyz + curvature * s * w) : ball.xyz;
+    float cosine = max(dot(w, m), 0.05);
+    float own = ballTransmittance(i, w).r;
+    if (extinctionScale != 1.0) own = pow(own, extinctionScale);
+    return mix(w, m / cosine, clamp(own / psi, 0.0, 1.0));
+}
+
+// What a sample receives from the lights: the light at its centre, and how it
+// changes across the Gaussian (its logarithmic gradient, weighted over the lights
+// by their share: the gradient of the log of a sum is that average). Moving
+// towards light j by d gains exp(sigma_t d) of transmittance and (1 + 2 d / r_j)
+// of irradiance, so the gradient is sigma_t towardLights + falloff.
+
+// The light sample i receives, with the phase function towards toCamera (any
+// vector when g = 0, where p is the constant 1 / (4 pi)).
+Received receivedLight(int i, vec3 toCamera) {
+    vec3 centre = samples[i].centreWidth.xyz;
+    float width = samples[i].centreWidth.w;
+    vec3 received = vec3(0.0), toward = vec3(0.0), falloff = vec3(0.0);
+    float total = 0.0;
+    for (int j = 0; j < lightCount; ++j) {
+        vec3 toLight;
+        vec3 irradiance = lights[j].power.rgb;
+        float inverseDistance = 0.0;
+        if (lights[j].position.w > 0.5) {
+            toLight = lights[j].position.xyz - centre;
+            // Inverse-square falloff (Lucent is physically based), averaged over the
+            // Gaussian's core: a light inside or on the object stays finite.
+            float d2 = max(dot(toLight, toLight), width * width);
+            irradiance /= d2;
+            inverseDistance = inversesqrt(d2);
+            toLight = length(toLight) > 0.0 ? normalize(toLight) : vec3(0.0, 0.0, 1.0);
+        } else {
+            toLight = -lights[j].position.xyz;
+        }
+        irradiance *= blockerVisibility(j, centre);
+        if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
+        // Phase between the light's propagation (-toLight) and the view's (toCamera).
+        vec3 psi = attenuation(i, toLight);
+        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
+        float share = light.r + light.g + light.b;
+        received += light;
+        toward += share * pathGradient(i, toLight, psi.r);
+        falloff += share * 2.0 * inverseDistance * toLight;
+        total += share;
+    }
+    float norm = total > 0.0 ? 1.0 / total : 0.0;
+    return Received(vec4(received, 0.0), vec4(toward * norm, 0.0), vec4(falloff * norm, 0.0));
+}

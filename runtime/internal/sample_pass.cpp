@@ -1,0 +1,121 @@
+#include "runtime/internal/sample_pass.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+
+#include "core/math.h"
+#include "runtime/internal/frame_targets.h"
+#include "runtime/internal/gpu_layout.h"
+
+namespace lucent {
+namespace {
+
+void setShNormalisation(const GlProgram& program) {
+    // sqrt(2) K_lm (K_l0 for m = 0), so the shaders need no factorials.
+    float normalisation[64];
+    for (int l = 0; l < 8; ++l)
+        for (int m = 0; m <= l; ++m) {
+            double ratio = 1.0;  // (l-m)! / (l+m)!
+            for (int j = l - m + 1; j <= l + m; ++j) ratio /= double(j);
+            const double k = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio);
+            normalisation[l * l + l + m] = float(m == 0 ? k : std::sqrt(2.0) * k);
+        }
+    glProgramUniform1fv(program.id(), program.uniform("shNormalisation"), 64, normalisation);
+}
+
+}  // namespace
+
+SamplePass::SamplePass(double cutoff) : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
+    for (const GlProgram* p : {&scatterProgram_, &scatterSlabsProgram_, &receivedProgram_}) {
+        setShNormalisation(*p);
+        glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
+    }
+}
+
+void SamplePass::prepare(FrameContext& frame) {
+    for (GpuObject& o : frame.objects)
+        if (o.shadows && !o.shadowsValid) {
+            o.shadows->render(frame.lights.lights);
+            o.shadowsValid = true;
+        }
+}
+
+void SamplePass::setFrameUniforms(const FrameContext& frame) const {
+    const ViewSetup& view = frame.view;
+    const glm::mat3 viewToWorld = glm::transpose(glm::mat3(view.view));
+    // View-space direction through pixel (x, y) at z = -1 for this projection.
+    const glm::mat4& P = view.projection;
+    const glm::vec4 pixelToView(2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
+                                (P[2][0] - 1.0f) / P[0][0], (P[2][1] - 1.0f) / P[1][1]);
+    for (const GlProgram* program : {&scatterProgram_, &scatterSlabsProgram_}) {
+        const GLuint id = program->id();
+        glProgramUniformMatrix4fv(id, program->uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
+        glProgramUniformMatrix4fv(id, program->uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
+        glProgramUniform3fv(id, program->uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+        glProgramUniformMatrix3fv(id, program->uniform("viewToWorld"), 1, GL_FALSE, glm::value_ptr(viewToWorld));
+        glProgramUniform4fv(id, program->uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
+        glProgramUniform1i(id, program->uniform("lightCount"), frame.lights.count);
+        glProgramUniform1f(id, program->uniform("cutoffSigmas"), float(cutoffSigmas_));
+        glProgramUniform1f(id, program->uniform("discardBelow"), frame.options.discardBelow);
+        glProgramUniform1f(id, program->uniform("extinctionScale"), frame.options.extinctionScale);
+        glProgramUniform1i(id, program->uniform("raySegments"), GLint(gpu::kUnitRaySegments));
+    }
+}
+
+// Isotropic media: the received light does not depend on the view, so it is
+// computed when the lights or the medium scale change, not every frame.
+void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
+    const float scale = frame.options.extinctionScale;
+    if (o.samples->receivedValid && o.samples->receivedScale == scale) return;
+    const GlProgram& c = receivedProgram_;
+    glUseProgram(c.id());
+    glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
+    glUniform1i(c.uniform("channels"), o.samples->channels());
+    glUniform1f(c.uniform("g"), 0.0f);
+    glUniform1i(c.uniform("lightCount"), frame.lights.count);
+    glUniform1f(c.uniform("extinctionScale"), scale);
+    glUniform1i(c.uniform("sampleCount"), GLint(o.samples->size()));
+    o.samples->computeReceived();
+    o.samples->receivedValid = true;
+    o.samples->receivedScale = scale;
+}
+
+void SamplePass::draw(FrameContext& frame) {
+    if (!frame.options.scattering) return;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    setFrameUniforms(frame);
+    glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
+    for (GpuObject& o : frame.objects) {
+        const SlabTable& slabs = o.samples->slabs();
+        const GlProgram& p = slabs.empty() ? scatterProgram_ : scatterSlabsProgram_;
+        o.samples->bind();
+        if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
+        for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&receivedProgram_)})
+            glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
+        const bool cache = o.g == 0.0;
+        if (cache) updateReceived(o, frame);
+        glUseProgram(p.id());
+        glUniform1i(p.uniform("receivedIsCached"), cache ? 1 : 0);
+        glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
+        glUniform1i(p.uniform("channels"), o.samples->channels());
+        glUniform1f(p.uniform("g"), float(o.g));
+        glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
+        glUniform1i(p.uniform("exactViewAttenuation"), o.samples->homogeneous() || !slabs.empty() ? 1 : 0);
+        if (!slabs.empty()) {
+            glUniform1i(p.uniform("slabCount"), GLint(slabs.bounds.size()));
+            glUniform4fv(p.uniform("slabBounds"), GLsizei(slabs.bounds.size()), glm::value_ptr(slabs.bounds[0]));
+            std::vector<glm::vec4> extinction = slabs.extinction;
+            for (glm::vec4& e : extinction) e *= frame.options.extinctionScale;
+            glUniform4fv(p.uniform("slabExtinction"), GLsizei(extinction.size()), glm::value_ptr(extinction[0]));
+        }
+        glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
+        o.samples->draw();
+    }
+}
+
+}  // namespace lucent

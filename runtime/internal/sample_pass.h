@@ -1,0 +1,31 @@
+#pragma once
+// Pass 2 of thesis 3.4.2: every sample's Gaussian, expanded in a geometry shader
+// and integrated exactly along each pixel's ray segment (scatter.vert, .geom,
+// .frag), summed. Isotropic media reuse the light each sample receives while the
+// lights and the medium scale stay put (received.comp).
+#include "runtime/internal/gl_program.h"
+#include "runtime/internal/render_pass.h"
+
+namespace lucent {
+
+class SamplePass final : public RenderPass {
+public:
+    // cutoff: a Gaussian is drawn where it exceeds this fraction of its peak.
+    explicit SamplePass(double cutoff);
+    void prepare(FrameContext& frame) override;  // the blocker shadow maps, when the lights changed
+    void draw(FrameContext& frame) override;
+
+private:
+    void setFrameUniforms(const FrameContext& frame) const;
+    void updateReceived(GpuObject& object, const FrameContext& frame) const;
+    double cutoffSigmas_;
+    GlProgram scatterProgram_{
+        {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}}};
+    // The same for objects of constant-density slabs (scatter.frag's table).
+    GlProgram scatterSlabsProgram_{
+        {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}},
+        {"DENSITY_SLABS"}};
+    GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
+};
+
+}  // namespace lucent

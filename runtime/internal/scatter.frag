@@ -1,0 +1,141 @@
+#version 450 core
+// Pass 2 (thesis 3.4.2, eq. 3.4): the Gaussian of one sample integrated exactly
+// (erf) along this pixel's ray over the part of the ray inside the object (from
+// the front face to the farthest back face), stopped by the host's opaque
+// geometry and the object's blockers, and clipped to the sample's density slab.
+in GeometryOut {
+    flat vec3 viewCentre;    // of this Gaussian: the sample's or its mirror image's
+    flat vec3 anchorOffset;  // that centre minus the sample's, where the light is known
+    flat float width;
+    flat vec3 radiance;
+    flat vec3 gradient[3];  // logarithmic gradient of the light per channel (scatter.vert)
+    flat vec3 extinction;
+    flat float viewDepth;   // < 0: the published scheme, or the centre is off screen
+    flat int viewFromFront; // 1: attenuate from this pixel's front face (viewDepth unused)
+    flat vec2 region;
+} f;
+
+uniform sampler2D raySegments;  // per pixel [t0, t1] inside the objects (segment.frag)
+uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
+uniform mat3 viewToWorld;
+uniform vec3 cameraPosition;
+uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
+uniform int channels;           // 1: one gradient serves all three channels
+uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
+#ifdef DENSITY_SLABS
+// The density slabs along regionAxis (runtime/scattering_pass.h), when sigma_t is
+// constant in each: [lo, hi] and sigma_t. Compiled only into the program for
+// objects that have them: on llvmpipe the loop alone, never run, doubled the
+// frame time of every other object.
+uniform int slabCount;
+uniform vec4 slabBounds[16];
+uniform vec4 slabExtinction[16];
+#endif
+
+out vec4 colour;
+
+// erfc(x) exp(x^2) for x >= 0: Abramowitz and Stegun 7.1.26 (absolute error of
+// erfc < 1.5e-7). Kept apart from exp(-x^2) so that callers can fold that factor
+// into other exponents and nothing overflows or underflows on the way.
+float erfcScaled(float x) {
+    float t = 1.0 / (1.0 + 0.3275911 * x);
+    return t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
+}
+
+// int_t0^t1 exp(logAmplitude - |t dir - c|^2 / (2 s^2)) dt. Every factor that can
+// overflow (the amplitude) or underflow (the erfc tails, the distance to the ray)
+// is summed in one exponent first; tails subtract without cancellation.
+float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, float t1) {
+    float tc = dot(dir, c);
+    float h2 = max(dot(c, c) - tc * tc, 0.0);
+    float k = 1.0 / (sqrt(2.0) * s);
+    float a = (t0 - tc) * k, b = (t1 - tc) * k;
+    float e = logAmplitude - 0.5 * h2 / (s * s);
+    float value;
+    if (a >= 0.0) value = erfcScaled(a) * exp(e - a * a) - erfcScaled(b) * exp(e - b * b);
+    else if (b <= 0.0) value = erfcScaled(-b) * exp(e - b * b) - erfcScaled(-a) * exp(e - a * a);
+    else value = exp(min(e, 80.0)) * (2.0 - erfcScaled(-a) * exp(-a * a) - erfcScaled(b) * exp(-b * b));
+    return s * sqrt(0.5 * 3.14159265358979) * max(value, 0.0);
+}
+
+// The sample's light along this pixel's ray x = t dir, on the Gaussian centred at
+// c (the sample's centre b, or its image): exp(G . (x - b)) towards the lights,
+// times the transmittance to the eye. From this pixel's front face t0 it is
+// exp(-sigma_t (t - t0)) (viewFromFront), or relative to the centre's own,
+// exp(-sigma_t ((t - t0) - viewDepth)). Gathered as exp(G' . (x - c)) times
+// exp(G . (c - b) - sigma_t (dir . c - t0) [+ sigma_t viewDepth]), G' = G - sigma_t dir;
+// and a Gaussian times exp(G' . (x - c)) is exp(|G'|^2 s^2 / 2) times the Gaussian
+// centred at c + G' s^2. Every exponent is summed before any exp (gaussianSegment).
+float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1, float logOffset) {
+    float s2 = f.width * f.width;
+    float logScale = dot(gradient, f.anchorOffset) + logOffset;
+    if (f.viewFromFront == 1) {
+        logScale -= extinction * (dot(dir, f.viewCentre) - front);
+        gradient -= extinction * dir;
+    } else if (f.viewDepth >= 0.0) {
+        // Where the front face jumps (a concave object's silhouette in front of
+        // another part of it) this pixel's front says nothing about the centre's
+        // ray: beyond two widths, or a factor e^2, the correction stops growing.
+        float shift = f.viewDepth - (dot(dir, f.viewCentre - f.anchorOffset) - front);
+        float limit = min(2.0 * f.width, 2.0 / max(extinction, 1e-30));
+        logScale += extinction * (clamp(shift, -limit, limit) - dot(dir, f.anchorOffset));
+        gradient -= extinction * dir;
+    }
+    return gaussianSegment(f.viewCentre + gradient * s2, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
+}
+
+// The ray's parameter interval inside [lo, hi] along regionAxis.
+vec2 slabInterval(vec2 bounds, float origin, float direction) {
+    if (abs(direction) < 1e-20) return origin >= bounds.x && origin <= bounds.y ? vec2(-1e30, 1e30) : vec2(1e30, -1e30);
+    float ta = (bounds.x - origin) / direction, tb = (bounds.y - origin) / direction;
+    return vec2(min(ta, tb), max(ta, tb));
+}
+
+#ifdef DENSITY_SLABS
+// The optical depth from the front face to where the ray enters the sample's
+// slab, less the sample's own sigma_t over that distance: what the other slabs
+// take beyond what exp(-sigma_t (t - t0)) assumes (0 in a single slab).
+vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
+    vec3 depth = vec3(0.0);
+    for (int k = 0; k < slabCount; ++k) {
+        vec2 span = slabInterval(slabBounds[k].xy, origin, direction);
+        float inside = min(entry, span.y) - max(front, span.x);
+        if (inside > 0.0) depth += (slabExtinction[k].rgb - f.extinction) * inside;
+    }
+    return depth;
+}
+#endif
+
+void main() {
+    vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
+    float t0 = segment.x, t1 = segment.y;
+    vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
+    vec3 slabsBefore = vec3(0.0);
+    if (regionAxis < 3) {
+        // The part of the ray inside the sample's density slab.
+        float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
+        vec2 span = slabInterval(f.region, o, d);
+        t0 = max(t0, span.x);
+        t1 = min(t1, span.y);
+#ifdef DENSITY_SLABS
+        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
+#endif
+    }
+    if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
+
+    vec3 integral;
+    // t0 of this pixel's own ray: the view transmittance starts at its front face.
+    float front = segment.x;
+    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
+    if (channels == 3) {
+        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
+        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
+    } else {
+        integral.gb = integral.rr;
+    }
+    // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
+    if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
+                                  discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
+        discard;
+    colour = vec4(f.radiance * integral, 1.0);
+}

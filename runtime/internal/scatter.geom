@@ -1,0 +1,92 @@
+#version 450 core
+// Pass 2: each sample becomes a camera-facing square that covers the projection of
+// the sphere where its Gaussian exceeds the cut-off (tighter on screen than the
+// thesis's cube of side 2r, and 4 vertices instead of 14). The sphere grows by
+// the largest shift of the light's exponential variation (scatter.frag).
+// A sample near the boundary of its region gets a second square for its mirror
+// image (preprocess/sample_weights.h), which reaches inside only that far.
+layout(points) in;
+layout(triangle_strip, max_vertices = 8) out;
+
+in VertexOut {
+    vec3 viewCentre;
+    vec3 viewImage;
+    float width;
+    vec3 radiance;
+    vec3 gradient[3];
+    vec3 extinction;
+    float viewDepth;
+    int viewFromFront;
+    vec2 region;
+} v[];
+
+out GeometryOut {
+    flat vec3 viewCentre;    // of this square's Gaussian: the sample's or its image's
+    flat vec3 anchorOffset;  // that centre minus the sample's, where its light is known
+    flat float width;
+    flat vec3 radiance;
+    flat vec3 gradient[3];
+    flat vec3 extinction;
+    flat float viewDepth;
+    flat int viewFromFront;
+    flat vec2 region;
+} o;
+
+uniform mat4 projection;
+uniform float cutoffSigmas;  // sqrt(2 ln(1 / epsilon)): exp(-r^2 / 2 s^2) = epsilon at r = cutoffSigmas * s
+
+void emit(vec3 centre, vec4 clip) {
+    o.viewCentre = centre;
+    o.anchorOffset = centre - v[0].viewCentre;
+    o.width = v[0].width;
+    o.radiance = v[0].radiance;
+    o.gradient = v[0].gradient;
+    o.extinction = v[0].extinction;
+    o.viewDepth = v[0].viewDepth;
+    o.viewFromFront = v[0].viewFromFront;
+    o.region = v[0].region;
+    gl_Position = clip;
+    EmitVertex();
+}
+
+void square(vec3 c, float r) {
+    float d = length(c);
+    if (d <= r * 1.0001 || c.z > -r) {
+        // The camera is inside or the sphere crosses the camera plane: cover the screen.
+        emit(c, vec4(-1, -1, 0, 1));
+        emit(c, vec4(1, -1, 0, 1));
+        emit(c, vec4(-1, 1, 0, 1));
+        emit(c, vec4(1, 1, 0, 1));
+        EndPrimitive();
+        return;
+    }
+    // The cone from the eye tangent to the sphere cuts the plane through c normal to
+    // c in a circle of radius r d / sqrt(d^2 - r^2); the square holds that circle.
+    vec3 axis = c / d;
+    vec3 u = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+    vec3 w = cross(axis, u);
+    float h = r * d / sqrt(d * d - r * r);
+    emit(c, projection * vec4(c + h * (-u - w), 1.0));
+    emit(c, projection * vec4(c + h * (u - w), 1.0));
+    emit(c, projection * vec4(c + h * (-u + w), 1.0));
+    emit(c, projection * vec4(c + h * (u + w), 1.0));
+    EndPrimitive();
+}
+
+void main() {
+    if (max(v[0].radiance.r, max(v[0].radiance.g, v[0].radiance.b)) <= 0.0) return;
+    float s = v[0].width;
+    // The shift of scatter.frag, G s^2, is at most (|G_light| + sigma_t) s^2.
+    // Attenuated from the front face the view's part only ever falls inside, so
+    // the light's part alone can carry the integrand beyond the cut-off.
+    float shift = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        float view = v[0].viewDepth >= 0.0 ? v[0].extinction[k] : 0.0;
+        shift = max(shift, (length(v[0].gradient[k]) + view) * s * s);
+    }
+    float r = cutoffSigmas * s + shift;
+    square(v[0].viewCentre, r);
+    // The boundary lies halfway to the image: past the cut-off, the image adds nothing inside.
+    float toImage = length(v[0].viewImage - v[0].viewCentre);
+    if (toImage > 0.0 && toImage < 2.0 * cutoffSigmas * s) square(v[0].viewImage, r);
+}

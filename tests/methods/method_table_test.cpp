@@ -1,0 +1,112 @@
+// The method table: every built method listed once with a factory, auto
+// resolved with its reason, and the loader's sample-set contract.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "core/error.h"
+#include "core/loaded_scene.h"
+#include "core/statistics.h"
+#include "methods/method_table.h"
+#include "preprocess/preprocessor.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+TEST(MethodTable, NamesAreUniqueWithFactoriesAndAutoLast) {
+    std::set<std::string> names;
+    for (const MethodEntry& m : methodTable()) {
+        EXPECT_TRUE(names.insert(m.name).second) << m.name;
+        EXPECT_FALSE(m.summary.empty()) << m.name;
+        EXPECT_TRUE(m.create && m.create()) << m.name;
+        EXPECT_EQ(m.unavailableReason(), "") << m.name;  // ss and reference run on any machine Lucent builds on
+    }
+    EXPECT_TRUE(names.count("ss") && names.count("reference"));
+    const std::vector<std::string> all = methodNames();
+    EXPECT_EQ(all.back(), "auto");
+    EXPECT_EQ(all.size(), methodTable().size() + 1);
+}
+
+TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
+    try {
+        findMethod("lbl");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "method 'lbl' is not built into this binary (built: ss, reference, auto)");
+    }
+    SceneDesc scene;
+    scene.file = "scene.json";
+    try {
+        resolveMethod("magic", scene);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("scene.json: /render/method: method 'magic' is not built", 0), 0u) << e.what();
+    }
+}
+
+TEST(MethodTable, AutoSaysWhatItChoseAndWhy) {
+    SceneDesc scene;
+    const ResolvedMethod r = resolveMethod("auto", scene);
+    ASSERT_NE(r.entry, nullptr);
+    EXPECT_EQ(r.entry->name, chooseMethod(scene).method);
+    EXPECT_FALSE(r.reason.empty());
+    EXPECT_TRUE(resolveMethod("reference", scene).reason.empty());
+}
+
+class OneSphere : public ::testing::Test {
+protected:
+    void SetUp() override {
+        scene.file = dir.path() / "scene.json";
+        ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 2.0);
+        o.name = "ball";
+        o.fingerprint = 7;
+        o.samples = dir.path() / "ball.lsf";
+        scene.objects = {o};
+    }
+    test::ScratchDir dir;
+    SceneDesc scene;
+};
+
+TEST_F(OneSphere, SampleSetsOfAnotherObjectAreRejectedFromFilesAndFromMemory) {
+    LoadedScene loaded = loadScene(scene, false);
+    EXPECT_FALSE(loaded.hasSamples());
+    PreprocessSettings tiny = qualityPreset("draft");
+    tiny.samples = 300;
+    SampleSet made = preprocessObject(loaded.objects[0], tiny);
+    EXPECT_EQ(made.sceneFingerprint, 7u);
+    attachSamples(loaded, {made});
+    EXPECT_TRUE(loaded.hasSamples());
+
+    SampleSet foreign = made;
+    foreign.sceneFingerprint = 8;
+    try {
+        attachSamples(loaded, {foreign});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "in-memory samples of ball: sample file was made for a different mesh or medium than "
+                               "object 'ball'; run lucent preprocess again");
+    }
+    EXPECT_THROW(attachSamples(loaded, {}), Error);
+    writeSampleFile(scene.objects[0].samples, foreign);
+    try {
+        loadScene(scene, true);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind((dir.path() / "ball.lsf").string() + ": sample file was made for", 0), 0u);
+    }
+}
+
+TEST_F(OneSphere, MethodsThatDrawFromSamplesRefuseASceneWithout) {
+    const LoadedScene loaded = loadScene(scene, false);
+    EXPECT_THROW(renderWith(findMethod("ss"), loaded, MethodSettings{}), Error);
+}
+
+TEST(Statistics, MedianOfOddAndEvenCounts) {
+    EXPECT_EQ(median({}), 0.0);
+    EXPECT_EQ(median({5.0, 1.0, 3.0}), 3.0);
+    EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
+}
+
+}  // namespace
+}  // namespace lucent
