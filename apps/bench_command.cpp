@@ -5,13 +5,14 @@
 #include "apps/run_program.h"
 #include "bench/accuracy_sweep.h"
 #include "core/error.h"
+#include "preprocess/preprocessor.h"
 
 namespace lucent {
 
 Command addBenchCommand(CLI::App& app) {
     struct Options {
         std::vector<std::string> scenes, knobs;
-        std::string output = "bench-accuracy", backend;
+        std::string output = "bench-accuracy", backend, quality = "default";
         int size = 0, frames = 7;
         double tolerance = 1e-3;
         bool plot = true;
@@ -29,7 +30,9 @@ Command addBenchCommand(CLI::App& app) {
     sub->add_option("--knobs", o->knobs, knobHelp)->delimiter(',');
     sub->add_option("--size", o->size, "Image width and height (default: each scene camera's)")->check(CLI::Range(8, 4096));
     sub->add_option("--frames", o->frames, "Timed frames per setting (median reported)")->check(CLI::Range(1, 1000));
-    sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")->check(CLI::Range(1e-8, 0.5));
+    sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")->check(finiteRange(1e-8, 0.5));
+    sub->add_option("--quality", o->quality, "Preset the knobs move away from: draft, default or high")
+        ->check(CLI::IsMember({"draft", "default", "high"}));
     sub->add_option("--backend", o->backend, "osmesa or egl")->check(CLI::IsMember({"osmesa", "egl"}));
     sub->add_flag("!--no-plot", o->plot, "Write the CSV only (the plots need python3-matplotlib)");
     return [o] {
@@ -39,6 +42,7 @@ Command addBenchCommand(CLI::App& app) {
         options.frames = o->frames;
         options.referenceTolerance = o->tolerance;
         options.backend = parseGlBackend(o->backend);
+        options.base = qualityPreset(o->quality);
         accuracySweep(options.knobs, options.base);  // rejects an unknown knob before any work
         std::vector<std::filesystem::path> scenes(o->scenes.begin(), o->scenes.end());
         std::filesystem::create_directories(o->output);
@@ -47,7 +51,7 @@ Command addBenchCommand(CLI::App& app) {
         std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());
         if (!o->plot) return;
         const std::filesystem::path script = installedDataFile("plot-accuracy.py");
-        if (runProgram({"python3", script.string(), csv.string(), o->output}) != 0)
+        if (runProgram({script.string(), csv.string(), o->output}) != 0)  // its #! line picks Debian's python3
             throw Error(csv.string(), "plotting failed (python3-matplotlib missing? scripts/install-deps.sh installs it)");
     };
 }

@@ -5,6 +5,8 @@
 
 #include "apps/commands.h"
 #include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/loaded_scene.h"
 #include "core/sample_set.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
@@ -27,9 +29,9 @@ Command addPreprocessCommand(CLI::App& app) {
     sub->add_option("--directions", o->directions, "Directions d of the density heuristic")->check(CLI::Range(6, 65536));
     sub->add_option("--projection-directions", o->projectionDirections, "Directions of the SH projection")->check(CLI::Range(16, 65536));
     sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")->check(CLI::Range(1, int(kMaxSampleShOrder)));
-    sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file");
+    sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file")->check(unsigned64());
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(CLI::Range(0.05, 20.0));
+    sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(finiteRange(0.05, 20.0));
     sub->add_option("--scheme", o->scheme,
                     "lucent (default) or published: the thesis's scheme as written, for comparison (docs/accuracy.md)")
         ->check(CLI::IsMember({"lucent", "published"}));
@@ -47,20 +49,34 @@ Command addPreprocessCommand(CLI::App& app) {
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
 
         const SceneDesc scene = parseScene(o->scene);
-        for (const auto& object : scene.objects) checkWritable(object.samples);
+        // No sample file may replace an input of this run, nor serve two objects.
+        std::vector<std::filesystem::path> outputs;
+        for (const auto& object : scene.objects) outputs.push_back(object.samples);
+        checkOutputsDistinct(outputs);
+        for (const auto& output : outputs) {
+            checkOutputIsNoInput(output, inputFilesOf(scene, false));
+            checkWritable(output);
+        }
         std::vector<std::string> warnings;
         const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
         printWarnings(warnings);
+        // Every object first, then every file: a failure on one object leaves no
+        // sample file of another behind.
+        std::vector<SampleSet> sets;
         for (const VolumeObject& object : objects) {
             PreprocessTimings timings;
-            const SampleSet samples = preprocessObject(object, settings, &timings);
-            writeSampleFile(object.desc().samples, samples);
+            sets.push_back(preprocessObject(object, settings, &timings));
             std::fprintf(stderr,
                          "lucent: %s: %zu samples in %.2f s (layers %.2f, heuristic %.2f, divergence %.2f, "
-                         "Poisson disks %.2f in %zu passes, SH %.2f) -> %s\n",
-                         object.desc().name.c_str(), samples.size(), timings.total(), timings.layers,
-                         timings.firstMoments, timings.divergence, timings.poissonDisk, timings.poissonPasses, timings.projection,
-                         object.desc().samples.string().c_str());
+                         "Poisson disks %.2f in %zu passes, SH %.2f)\n",
+                         object.desc().name.c_str(), sets.back().size(), timings.total(), timings.layers,
+                         timings.firstMoments, timings.divergence, timings.poissonDisk, timings.poissonPasses,
+                         timings.projection);
+        }
+        for (size_t i = 0; i < objects.size(); ++i) {
+            writeSampleFile(objects[i].desc().samples, sets[i]);
+            std::fprintf(stderr, "lucent: %s: wrote %s\n", objects[i].desc().name.c_str(),
+                         objects[i].desc().samples.string().c_str());
         }
     };
 }

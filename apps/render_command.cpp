@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/input_file.h"
 #include "core/loaded_scene.h"
 #include "core/scene.h"
 #include "methods/method_table.h"
@@ -33,11 +34,12 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--width", o->width, "Image width (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", o->height, "Image height (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_flag("--no-surface", o->noSurface, "Leave out the reflected surface term");
-    sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(CLI::Range(1e-8, 0.5));
+    sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")->check(CLI::Range(0.0, 1e30));
+    sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")->check(finiteRange(0.0, 1e30));
     return [o] {
         SceneDesc scene = parseScene(o->scene);
+        checkOutputIsNoInput(o->output, inputFilesOf(scene, true));
         checkWritable(o->output);
         if (o->width) scene.camera.width = o->width;
         if (o->height) scene.camera.height = o->height;
@@ -61,6 +63,11 @@ Command addRenderCommand(CLI::App& app) {
         const Image image = renderWith(*method.entry, loaded, settings, &servedBy);
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);
         const std::string why = method.reason.empty() ? "" : ", chosen by auto: " + method.reason;
+        size_t nonFinite = 0;
+        for (const auto& p : image.pixels) nonFinite += std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) ? 0 : 1;
+        if (nonFinite > 0)
+            printWarnings({std::to_string(nonFinite) + " pixel(s) overflowed the single-precision range and are "
+                           "written as 0 (lower the light or sigma_t; docs/robustness.md)"});
         writeImage(o->output, image, o->exposure);
         std::fprintf(stderr, "lucent: wrote %s (%dx%d, method %s%s)\n", o->output.c_str(), image.width, image.height,
                      used.c_str(), why.c_str());

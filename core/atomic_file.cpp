@@ -11,7 +11,15 @@ namespace lucent {
 
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
     const std::string name = target_.string();
-    if (std::filesystem::is_directory(target_)) throw Error(name, "cannot write: is a directory");
+    // Only a regular file (or nothing) is replaced: renaming over a symbolic link,
+    // a device or a FIFO would turn it into a regular file.
+    std::error_code error;
+    const auto status = std::filesystem::symlink_status(target_, error);
+    if (std::filesystem::is_directory(status)) throw Error(name, "cannot write: is a directory");
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw Error(name, std::string("cannot write: is ") +
+                              (std::filesystem::is_symlink(status) ? "a symbolic link" : "not a regular file") +
+                              " (Lucent replaces only regular files)");
     temporary_ = target_;
     temporary_ += ".tmp" + std::to_string(::getpid());
     stream_.open(temporary_, std::ios::binary | std::ios::trunc);

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace lucent {
 
@@ -139,16 +140,16 @@ double GridDensity::integrate(const Vec3& a, const Vec3& b) const {
 std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int nx, int ny, int nz,
                                          const Bounds3& bounds) {
     const std::string name = file.string();
-    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    const uint64_t expected = uint64_t(nx) * uint64_t(ny) * uint64_t(nz) * sizeof(float);
+    checkMemoryBudget(expected, file, "density grid");
+    const uint64_t actual = regularFileSize(file, "density grid file");
+    std::ifstream in(file, std::ios::binary);
     if (!in) throw Error(name, "cannot open density grid file");
-    const size_t expected = size_t(nx) * ny * nz * sizeof(float);
-    const size_t actual = size_t(in.tellg());
     if (actual != expected)
         throw Error(name, "grid file holds " + std::to_string(actual) + " bytes but dims [" + std::to_string(nx) +
                               ", " + std::to_string(ny) + ", " + std::to_string(nz) + "] need " +
                               std::to_string(expected));
     std::vector<float> values(size_t(nx) * ny * nz);
-    in.seekg(0);
     in.read(reinterpret_cast<char*>(values.data()), std::streamsize(expected));
     if (!in) throw Error(name, "cannot read density grid file");
     for (size_t i = 0; i < values.size(); ++i)
@@ -159,6 +160,7 @@ std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int 
 
 std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName) {
     const std::string name = file.string();
+    regularFileSize(file, "OpenVDB file");
     openvdb::initialize();
     openvdb::FloatGrid::Ptr grid;
     try {
@@ -175,6 +177,9 @@ std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, cons
     const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
     if (box.empty()) throw Error(name, "grid '" + gridName + "' has no active voxels");
     const openvdb::Coord dim = box.dim();
+    checkMemoryBudget(uint64_t(dim.x()) * uint64_t(dim.y()) * uint64_t(dim.z()) * sizeof(float), file,
+                      "grid '" + gridName + "' densified over its active box of " + std::to_string(dim.x()) + "x" +
+                          std::to_string(dim.y()) + "x" + std::to_string(dim.z()) + " voxels");
     std::vector<float> values(size_t(dim.x()) * dim.y() * dim.z());
     auto access = grid->getConstAccessor();
     size_t n = 0;

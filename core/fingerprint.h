@@ -14,7 +14,7 @@ public:
         for (size_t i = 0; i < size; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
     }
     void addText(std::string_view text) { addBytes(text.data(), text.size()); }
-    // A missing file adds only its name; loading it later reports the problem.
+    // A missing, irregular or oversized file adds only its name; loading it later reports the problem.
     void addFile(const std::filesystem::path& file);
     uint64_t value() const { return hash_; }
 

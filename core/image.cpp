@@ -75,12 +75,21 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
     out.stream().close();
     FILE* fp = std::fopen(out.temporaryPath().c_str(), "wb");
     if (!fp) throw Error(file.string(), "cannot write PNG");
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    // libpng prints its errors itself unless given handlers: these keep the
+    // message for Lucent's one error line.
+    thread_local std::string pngMessage;
+    pngMessage.clear();
+    const auto onError = [](png_structp p, png_const_charp message) {
+        pngMessage = message ? message : "unknown libpng error";
+        png_longjmp(p, 1);
+    };
+    const auto onWarning = [](png_structp, png_const_charp) {};
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, onError, onWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
         std::fclose(fp);
-        throw Error(file.string(), "cannot write PNG");
+        throw Error(file.string(), "cannot write PNG" + (pngMessage.empty() ? std::string() : ": " + pngMessage));
     }
     png_init_io(png, fp);
     png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,

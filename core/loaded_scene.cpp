@@ -15,6 +15,17 @@ Bounds3 LoadedScene::bounds() const {
     return b;
 }
 
+std::vector<std::filesystem::path> inputFilesOf(const SceneDesc& desc, bool withSampleFiles) {
+    std::vector<std::filesystem::path> files{desc.file};
+    for (const ObjectDesc& o : desc.objects) {
+        files.push_back(o.mesh);
+        files.insert(files.end(), o.medium.blockers.begin(), o.medium.blockers.end());
+        if (o.medium.density.type == DensityDesc::Type::Grid) files.push_back(o.medium.density.file);
+        if (withSampleFiles) files.push_back(o.samples);
+    }
+    return files;
+}
+
 SampleSet checkSamplesBelong(const VolumeObject& object, SampleSet samples, const std::string& origin) {
     if (samples.sceneFingerprint != object.desc().fingerprint)
         throw Error(origin, "sample file was made for a different mesh or medium than object '" + object.desc().name +

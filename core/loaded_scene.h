@@ -27,6 +27,10 @@ struct LoadedScene {
 // sample file and checks it (Error naming the file otherwise).
 LoadedScene loadScene(const SceneDesc& desc, bool withSampleFiles);
 
+// Every file the scene reads: the scene file, meshes, blockers, grids and, with
+// withSampleFiles, the sample files (what no output of a run may replace).
+std::vector<std::filesystem::path> inputFilesOf(const SceneDesc& desc, bool withSampleFiles);
+
 // Checks that samples were made for object (same fingerprint of mesh, blockers,
 // grid and medium) and returns them; origin names them in the error.
 SampleSet checkSamplesBelong(const VolumeObject& object, SampleSet samples, const std::string& origin);

@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/fingerprint.h"
+#include "core/input_file.h"
 
 static_assert(std::endian::native == std::endian::little, "the sample file is little endian; add byte swapping");
 
@@ -114,6 +115,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
 
 SampleSet readSampleFile(const std::filesystem::path& file) {
     const std::string name = file.string();
+    regularFileSize(file, "sample file");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw Error(name, "cannot open sample file");
     const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -151,6 +153,12 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     p.meanRadius = r.get<float>();
     p.widthFactor = r.get<float>();
     p.cullEpsilon = r.get<float>();
+    // The header's numbers: finite bounds, and finite, non-negative lengths.
+    for (const float v : b)
+        if (!std::isfinite(v)) throw Error(name, "sample file header has non-finite bounds");
+    for (const float v : {p.layerSpacing, p.meanRadius, p.widthFactor, p.cullEpsilon})
+        if (!std::isfinite(v) || v < 0.0f)
+            throw Error(name, "sample file header holds a negative or non-finite parameter");
     const uint32_t scheme = r.get<uint32_t>();
     if (scheme > uint32_t(SampleScheme::OpticallyThick)) throw Error(name, "unknown sample scheme " + std::to_string(scheme));
     p.scheme = SampleScheme(scheme);

@@ -8,6 +8,8 @@
 
 #include "core/error.h"
 #include "core/fingerprint.h"
+#include "core/input_file.h"
+#include "core/limits.h"
 
 namespace lucent {
 namespace {
@@ -81,6 +83,20 @@ public:
         if (!json_.is_array() || json_.size() != 3) fail("must be an array of 3 numbers");
         return Vec3(element(0).number(), element(1).number(), element(2).number());
     }
+    // A point of the scene: each coordinate within +-kMaxCoordinate.
+    Vec3 point() const {
+        if (!json_.is_array() || json_.size() != 3) fail("must be an array of 3 numbers");
+        return Vec3(element(0).number(-kMaxCoordinate, kMaxCoordinate), element(1).number(-kMaxCoordinate, kMaxCoordinate),
+                    element(2).number(-kMaxCoordinate, kMaxCoordinate));
+    }
+    // A direction: not zero, returned unit length however large its components
+    // (divided by the largest first, so that [1e200, 0, 0] does not overflow).
+    Vec3 direction() const {
+        const Vec3 d = vec3();
+        const double largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+        if (!(largest > 0.0)) fail("must not be the zero vector");
+        return glm::normalize(d / largest);
+    }
     // A number or an RGB triple, each channel within [lo, hi].
     Rgb rgb(double lo, double hi) const {
         if (json_.is_number()) {
@@ -105,14 +121,13 @@ private:
     std::set<std::string> known_;
 };
 
-constexpr double kHuge = 1e300;
 
 Camera parseCamera(Node n) {
     n.requireObject();
     Camera c;
-    c.position = n.child("position").vec3();
-    c.target = n.child("target").vec3();
-    if (n.has("up")) c.up = n.child("up").vec3();
+    c.position = n.child("position").point();
+    c.target = n.child("target").point();
+    if (n.has("up")) c.up = n.child("up").direction();
     c.fovYDegrees = n.child("fov_y").number(1e-3, 179.0);
     c.width = n.child("width").integer(1, 16384);
     c.height = n.child("height").integer(1, 16384);
@@ -128,14 +143,12 @@ Light parseLight(Node n) {
     const std::string type = n.child("type").string();
     if (type == "point") {
         l.type = Light::Type::Point;
-        l.position = n.child("position").vec3();
-        l.power = n.child("intensity").rgb(0.0, kHuge);
+        l.position = n.child("position").point();
+        l.power = n.child("intensity").rgb(0.0, kMaxMagnitude);
     } else if (type == "directional") {
         l.type = Light::Type::Directional;
-        const Vec3 d = n.child("direction").vec3();
-        if (glm::length(d) == 0.0) n.child("direction").fail("must not be the zero vector");
-        l.direction = glm::normalize(d);
-        l.power = n.child("irradiance").rgb(0.0, kHuge);
+        l.direction = n.child("direction").direction();
+        l.power = n.child("irradiance").rgb(0.0, kMaxMagnitude);
     } else {
         n.child("type").fail("unknown light type '" + type + "' (expected point or directional)");
     }
@@ -162,7 +175,7 @@ DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
         d.axis = a[0] - 'x';
         Node values = n.child("values");
         if (values.arraySize() == 0) values.fail("must hold at least one value");
-        for (size_t i = 0; i < values.arraySize(); ++i) d.values.push_back(values.element(i).nonNegative());
+        for (size_t i = 0; i < values.arraySize(); ++i) d.values.push_back(values.element(i).number(0.0, kMaxMagnitude));
     } else if (type == "grid") {
         d.type = DensityDesc::Type::Grid;
         Node file = n.child("file");
@@ -175,8 +188,8 @@ DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
             for (int i = 0; i < 3; ++i) d.dims[i] = dims.element(i).integer(1, 4096);
             Node bounds = n.child("bounds");
             if (bounds.arraySize() != 2) bounds.fail("must be [[min x, y, z], [max x, y, z]]");
-            d.bounds.min = bounds.element(0).vec3();
-            d.bounds.max = bounds.element(1).vec3();
+            d.bounds.min = bounds.element(0).point();
+            d.bounds.max = bounds.element(1).point();
             for (int i = 0; i < 3; ++i)
                 if (!(d.bounds.max[i] > d.bounds.min[i])) bounds.fail("max must exceed min on every axis");
         }
@@ -190,7 +203,7 @@ DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
 MediumDesc parseMedium(Node n, const std::filesystem::path& sceneFile) {
     n.requireObject();
     MediumDesc m;
-    m.sigmaT = n.child("sigma_t").rgb(0.0, kHuge);
+    m.sigmaT = n.child("sigma_t").rgb(0.0, kMaxMagnitude);
     m.albedo = n.child("albedo").rgb(0.0, 1.0);
     if (n.has("g")) m.g = n.child("g").number(-0.999, 0.999);
     if (n.has("ior")) m.ior = n.child("ior").number(1.0, 4.0);
@@ -252,8 +265,28 @@ RenderDesc parseRender(Node n) {
 SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file) {
     const std::string name = file.string();
     Json json;
+    // JSON lets a key repeat, the later value winning; a scene that says sigma_t
+    // twice is a mistake, so it is refused. The stack holds each open object's keys.
+    std::vector<std::pair<std::string, std::set<std::string>>> open;
+    std::string lastKey;
+    const auto rejectDuplicateKeys = [&](int, Json::parse_event_t event, Json& parsed) {
+        if (event == Json::parse_event_t::object_start) {
+            open.emplace_back(lastKey, std::set<std::string>{});
+        } else if (event == Json::parse_event_t::object_end) {
+            if (!open.empty()) open.pop_back();
+        } else if (event == Json::parse_event_t::key) {
+            lastKey = parsed.get<std::string>();
+            if (!open.empty() && !open.back().second.insert(lastKey).second) {
+                std::string path;
+                for (size_t i = 1; i < open.size(); ++i) path += "/" + open[i].first;
+                throw Error(name, (path.empty() ? "/" : path) + ": duplicate key '" + lastKey +
+                                      "' (JSON would silently keep the last one)");
+            }
+        }
+        return true;
+    };
     try {
-        json = Json::parse(text);
+        json = Json::parse(text, rejectDuplicateKeys);
     } catch (const Json::exception& e) {
         throw Error(name, std::string("malformed JSON: ") + e.what());
     }
@@ -263,6 +296,9 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     scene.file = file;
     scene.camera = parseCamera(root.child("camera"));
     Node lights = root.child("lights");
+    if (lights.arraySize() > kMaxLights)
+        lights.fail("holds " + std::to_string(lights.arraySize()) + " lights; at most " + std::to_string(kMaxLights) +
+                    " are supported (docs/robustness.md)");
     for (size_t i = 0; i < lights.arraySize(); ++i) scene.lights.push_back(parseLight(lights.element(i)));
     Node objects = root.child("objects");
     if (objects.arraySize() == 0) objects.fail("must hold at least one object");
@@ -273,11 +309,7 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
 }
 
 SceneDesc parseScene(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string(), "cannot open scene file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseSceneText(text.str(), file);
+    return parseSceneText(readTextFile(file, "scene file"), file);
 }
 
 }  // namespace lucent

@@ -11,6 +11,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/limits.h"
+#include "core/mesh_file_check.h"
 
 namespace lucent {
 
@@ -95,12 +98,12 @@ void rejectNonFiniteBinaryStl(const std::filesystem::path& path) {
 
 TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::string>& warnings) {
     const std::string file = path.string();
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe) throw Error(file, "cannot open mesh file");
-    }
+    const uint64_t size = regularFileSize(path, "mesh file");
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (extension != ".obj" && extension != ".off" && extension != ".ply" && extension != ".stl")
+        throw Error(file, "unsupported mesh format '" + extension + "' (use .obj, .off, .ply or .stl)");
+    checkMeshFileClaims(path, extension, size);
     if (extension == ".stl") rejectNonFiniteBinaryStl(path);
     OmMesh om;
     OpenMeshErrorCapture& capture = OpenMeshErrorCapture::instance();
@@ -123,6 +126,9 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
         const auto p = om.point(v);
         const Vec3 q(p[0], p[1], p[2]);
         if (!isFinite(q)) throw Error(file, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
+        if (std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z)}) > kMaxCoordinate)
+            throw Error(file, "vertex " + std::to_string(v.idx()) + " lies farther than 1e13 from the origin, "
+                              "beyond the single-precision range Lucent renders (docs/robustness.md)");
         mesh.positions.push_back(q);
     }
     for (auto e : om.edges())
@@ -136,6 +142,12 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
         if (!om.is_manifold(v)) throw Error(file, "mesh is not manifold at vertex " + std::to_string(v.idx()));
     }
 
+    if (!(mesh.bounds().diagonal() >= kMinObjectSize)) {
+        char size[32];
+        std::snprintf(size, sizeof size, "%.3g", mesh.bounds().diagonal());
+        throw Error(file, std::string("mesh is ") + size + " across; Lucent renders objects at least 1e-9 across "
+                          "(scale the scene's units; docs/robustness.md)");
+    }
     size_t degenerate = 0;
     const double scale = std::max(mesh.bounds().diagonal(), 1e-300);
     for (auto f : om.faces()) {

@@ -1,6 +1,10 @@
 #include "core/volume_object.h"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace lucent {
 namespace {
@@ -21,6 +25,14 @@ std::unique_ptr<DensityField> makeDensity(const DensityDesc& d, const Bounds3& o
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
     : desc_(desc), mesh_(loadClosedMesh(desc.mesh, warnings)), boundary_(mesh_) {
     density_ = makeDensity(desc.medium.density, mesh_.bounds());
+    // sigma_t times the density is what the sample file and the GPU store, in single precision.
+    const double peak = std::max({desc.medium.sigmaT.r, desc.medium.sigmaT.g, desc.medium.sigmaT.b}) * density_->maximum();
+    if (peak > kMaxMagnitude) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.3g", peak);
+        throw Error(desc.mesh.string(), std::string("sigma_t times the density reaches ") + text +
+                                            ", above the 1e30 Lucent stores (docs/robustness.md)");
+    }
     for (const auto& file : desc.medium.blockers) {
         TriangleMesh blocker = loadClosedMesh(file, warnings);
         for (const Vec3& p : blocker.positions)

@@ -16,6 +16,7 @@ HeuristicField sampleFirstMoment(const VolumeObject& object, const DistanceField
                                  const HeuristicSettings& settings) {
     HeuristicField field;
     field.centre = distance.centre();
+    field.scale = distance.scale();
     field.firstMoment = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
     field.firstMoment->setTransform(distance.grid().transform().copy());
     field.firstMoment->topologyUnion(distance.grid());
@@ -41,7 +42,7 @@ HeuristicField sampleFirstMoment(const VolumeObject& object, const DistanceField
             auto* leafS = receivable.leaf(l).buffer().data();
             for (auto it = leafT.beginValueOn(); it; ++it) {
                 const openvdb::Vec3d p = transform.indexToWorld(it.getCoord());
-                const Vec3 x = field.centre + Vec3(p.x(), p.y(), p.z());
+                const Vec3 x = field.centre + field.scale * Vec3(p.x(), p.y(), p.z());
                 Vec3 moment(0.0);
                 double zeroth = 0.0;
                 for (const Vec3& w : dirs) {
@@ -68,7 +69,7 @@ std::vector<HeuristicPoint> densityAtPoints(HeuristicField& field, const std::ve
     std::vector<HeuristicPoint> out(points.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
-            const Vec3 q = points[i] - field.centre;
+            const Vec3 q = (points[i] - field.centre) / field.scale;
             const openvdb::Vec3d p(q.x, q.y, q.z);
             out[i].density = std::abs(div.wsSample(p));
             out[i].receivable = receivable.wsSample(p);

@@ -35,7 +35,8 @@ struct HeuristicField {
     openvdb::Vec3SGrid::Ptr firstMoment;  // T
     openvdb::FloatGrid::Ptr receivable;   // integral exp(-tau) dw / (4 pi), in [0, 1]
     openvdb::FloatGrid::Ptr divergence;   // div T
-    Vec3 centre;                          // the grids' coordinates are relative to it
+    Vec3 centre;                          // the grids' coordinates are relative to it,
+    double scale = 1.0;                   // and divided by this (DistanceField::scale)
     uint64_t raysCast = 0;
 };
 

@@ -3,17 +3,33 @@
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lucent {
 
+namespace {
+
+// OpenVDB's transforms refuse voxels below about 1e-8, so a model far from unit
+// size is handed to it divided by the power of 4 nearest its size (exact in
+// floating point, square roots included). Models from 2^-10 to 2^10 in size go
+// as they are: OpenVDB is not bitwise scale-equivariant, and their sample sets
+// stay those they were.
+double unitScaleFor(const TriangleMesh& mesh) {
+    const double size = std::max(mesh.bounds().diagonal(), 1e-300);
+    if (size >= std::ldexp(1.0, -10) && size <= std::ldexp(1.0, 10)) return 1.0;
+    return std::pow(4.0, std::round(std::log(size) / std::log(4.0)));
+}
+
+}  // namespace
+
 DistanceField::DistanceField(const TriangleMesh& boundary, double voxelSize, double deepest)
-    : centre_(boundary.bounds().center()), voxelSize_(voxelSize) {
+    : centre_(boundary.bounds().center()), scale_(unitScaleFor(boundary)), voxelSize_(voxelSize) {
     openvdb::initialize();
     std::vector<openvdb::Vec3s> points;
     points.reserve(boundary.positions.size());
     for (const Vec3& p : boundary.positions) {
-        const Vec3 q = p - centre_;
+        const Vec3 q = (p - centre_) / scale_;
         points.emplace_back(float(q.x), float(q.y), float(q.z));
     }
     std::vector<openvdb::Vec3I> triangles;
@@ -23,7 +39,7 @@ DistanceField::DistanceField(const TriangleMesh& boundary, double voxelSize, dou
     // The interior band reaches a few voxels past the deepest layer, so that marching
     // cubes sees the sign change there and central differences have neighbours.
     const float interiorBand = float(std::ceil(deepest / voxelSize) + 3.0);
-    const auto transform = openvdb::math::Transform::createLinearTransform(voxelSize);
+    const auto transform = openvdb::math::Transform::createLinearTransform(voxelSize / scale_);
     grid_ = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, noQuads,
                                                                          3.0f, interiorBand);
 }
@@ -34,12 +50,12 @@ std::vector<OffsetLayer> DistanceField::offsetLayers(const std::vector<double>& 
         std::vector<openvdb::Vec3s> vertices;
         std::vector<openvdb::Vec3I> tris;
         std::vector<openvdb::Vec4I> quads;
-        openvdb::tools::volumeToMesh(*grid_, vertices, tris, quads, -depth, 0.0);  // inside is negative
+        openvdb::tools::volumeToMesh(*grid_, vertices, tris, quads, -depth / scale_, 0.0);  // inside is negative
         if (vertices.empty()) break;
         OffsetLayer layer;
         layer.depth = depth;
         layer.surface.positions.reserve(vertices.size());
-        for (const auto& v : vertices) layer.surface.positions.push_back(centre_ + Vec3(v.x(), v.y(), v.z()));
+        for (const auto& v : vertices) layer.surface.positions.push_back(toWorld(Vec3(v.x(), v.y(), v.z())));
         auto& out = layer.surface.triangles;
         out.reserve(tris.size() + 2 * quads.size());
         for (const auto& t : tris) out.push_back({t.x(), t.y(), t.z()});

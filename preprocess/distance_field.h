@@ -24,14 +24,19 @@ public:
     std::vector<OffsetLayer> offsetLayers(const std::vector<double>& depths) const;
 
     // The grid lives in coordinates relative to centre() (single-precision voxels
-    // keep their accuracy for models far from the origin).
+    // keep their accuracy for models far from the origin) and divided by scale(),
+    // a power of 4 near the model's size (any model is of unit size to OpenVDB).
     const openvdb::FloatGrid& grid() const { return *grid_; }
     const Vec3& centre() const { return centre_; }
+    double scale() const { return scale_; }
+    Vec3 toWorld(const Vec3& gridPoint) const { return centre_ + scale_ * gridPoint; }
+    Vec3 toGrid(const Vec3& world) const { return (world - centre_) / scale_; }
     double voxelSize() const { return voxelSize_; }
 
 private:
     openvdb::FloatGrid::Ptr grid_;
     Vec3 centre_;
+    double scale_;
     double voxelSize_;
 };
 

@@ -5,6 +5,9 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstdio>
+
+#include "core/error.h"
 
 #include "core/camera_rays.h"
 #include "core/progress.h"
@@ -31,7 +34,7 @@ Rgb adaptiveSimpson(const F& f, double a, double b, const Rgb& fa, const Rgb& fm
 // Integrates f over [a, b]: a fixed composite pass sizes the answer, then each
 // panel is refined until its share of the tolerance is met.
 template <class F>
-Rgb integrate(const F& f, double a, double b, double relativeTolerance) {
+Rgb integrate(const F& f, double a, double b, double relativeTolerance, double absoluteFloor = 1e-300) {
     constexpr int kPanels = 8;
     const double h = (b - a) / kPanels;
     Rgb values[2 * kPanels + 1];
@@ -39,12 +42,34 @@ Rgb integrate(const F& f, double a, double b, double relativeTolerance) {
     Rgb coarse(0.0);
     for (int p = 0; p < kPanels; ++p)
         coarse += h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
-    const double tol = std::max(relativeTolerance * magnitude(coarse) / kPanels, 1e-300);
+    const double tol = std::max(relativeTolerance * magnitude(coarse) / kPanels, absoluteFloor);
     Rgb total(0.0);
     for (int p = 0; p < kPanels; ++p) {
         const double x0 = a + h * p;
         const Rgb whole = h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
         total += adaptiveSimpson(f, x0, x0 + h, values[2 * p], values[2 * p + 1], values[2 * p + 2], whole, tol, 24);
+    }
+    return total;
+}
+
+// Optical depth of a segment beyond which its integrand, falling like
+// exp(-sigma_t (t - t0)) from the entry, is integrated in pieces.
+constexpr double kOpticalDepthInOnePiece = 8.0;
+
+// f over [a, b] when the medium can be optically deep there: fixed panels would
+// step over the thin sliver where the light is scattered (and the integral would
+// grow with sigma_t). So pieces from the entry, 1/sigma long and four times longer
+// each, every one to the tolerance of what came before: about log4(sigma L) pieces.
+template <class F>
+Rgb integrateIntoDenseMedium(const F& f, double a, double b, double sigmaMax, double relativeTolerance) {
+    if (!(sigmaMax * (b - a) > kOpticalDepthInOnePiece)) return integrate(f, a, b, relativeTolerance);
+    Rgb total(0.0);
+    double start = a, length = 1.0 / sigmaMax;
+    while (start < b) {
+        const double end = std::min(b, start + length);
+        total += integrate(f, start, end, relativeTolerance, relativeTolerance * magnitude(total) / 64.0 + 1e-300);
+        start = end;
+        length *= 4.0;
     }
     return total;
 }
@@ -157,13 +182,31 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
             const Rgb tau = tauBefore + sigmaT * o.density().integrate(entry, x);
             return glm::exp(-tau) * inScattered(o, x, dir);
         };
-        if (seg.span.t1 > seg.span.t0) total += integrate(integrand, seg.span.t0, seg.span.t1, settings.tolerance);
+        const double sigmaMax = std::max({sigmaT.r, sigmaT.g, sigmaT.b}) * o.density().maximum();
+        if (seg.span.t1 > seg.span.t0)
+            total += integrateIntoDenseMedium(integrand, seg.span.t0, seg.span.t1, sigmaMax, settings.tolerance);
         tauBefore += sigmaT * o.density().integrate(entry, origin + seg.span.t1 * dir);
     }
     return total + surface;
 }
 
 Image ReferenceRenderer::render(const ReferenceSettings& settings) const {
+    // Embree casts rays in single precision: a boundary is known to about 1e-7 of
+    // the coordinates' size, and an optical depth across that error must stay small.
+    for (const VolumeObject& o : objects_) {
+        const Bounds3 b = o.mesh().bounds();
+        const double size = std::max({b.diagonal(), glm::length(b.min), glm::length(b.max)});
+        const Rgb& sigmaT = o.desc().medium.sigmaT;
+        const double depth = std::max({sigmaT.r, sigmaT.g, sigmaT.b}) * o.density().maximum() * size;
+        if (depth > kMaxResolvedOpticalSize) {
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "--method reference: sigma_t times the object's size reaches %.3g, beyond the %.0e its "
+                          "single-precision ray casting resolves (docs/robustness.md)",
+                          depth, kMaxResolvedOpticalSize);
+            throw Error(o.desc().mesh.string(), text);
+        }
+    }
     const Camera& cam = scene_.camera;
     const CameraRays rays(cam);
     Image image(cam.width, cam.height);

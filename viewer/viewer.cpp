@@ -10,11 +10,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/input_file.h"
 #include "core/loaded_scene.h"
 #include "methods/method_table.h"
 #include "runtime/internal/gl_program.h"
@@ -61,8 +62,7 @@ private:
 std::vector<std::string> readScript(const std::filesystem::path& file) {
     std::vector<std::string> lines;
     if (file.empty()) return lines;
-    std::ifstream in(file);
-    if (!in) throw Error(file.string(), "cannot open viewer script");
+    std::istringstream in(readTextFile(file, "viewer script"));
     for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;
 }
@@ -118,6 +118,7 @@ void lightsPanel(ViewerState& state) {
 }  // namespace
 
 void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
+    const std::vector<std::string> script = readScript(options.script);  // cheap: its errors come first
     // The viewer draws with the interactive method of the table, in its own window.
     const MethodEntry& method = findMethod("ss");
     if (const std::string why = method.unavailableReason(); !why.empty())
@@ -125,7 +126,6 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     const LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
     const Bounds3 bounds = loaded.bounds();
-    const std::vector<std::string> script = readScript(options.script);
 
     ViewerState state(scene);
     const int width = options.width ? options.width : scene.camera.width;

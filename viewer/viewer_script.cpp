@@ -1,14 +1,49 @@
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "viewer/viewer_state.h"
 
 namespace lucent {
 namespace {
 
-Vec3 readVec3(std::istringstream& in, const std::string& where, const char* what) {
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// Three finite numbers, each within +-limit (the scene file's ranges, core/limits.h).
+Vec3 readVec3(std::istringstream& in, const std::string& where, const char* what, double limit = kMaxCoordinate) {
     Vec3 v;
     if (!(in >> v.x >> v.y >> v.z)) throw Error(where, std::string("expected three numbers for ") + what);
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(v[k]) || std::abs(v[k]) > limit)
+            throw Error(where, std::string(what) + " must be finite and within +-" + formatNumber(limit));
+    return v;
+}
+
+// Not zero; unit length however large (as the scene parser does).
+Vec3 readDirection(std::istringstream& in, const std::string& where) {
+    const Vec3 d = readVec3(in, where, "direction", 1e300);
+    const double largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (!(largest > 0.0)) throw Error(where, "direction must not be the zero vector");
+    return glm::normalize(d / largest);
+}
+
+// Intensity or irradiance per channel: non-negative, at most kMaxMagnitude.
+Rgb readColour(std::istringstream& in, const std::string& where) {
+    const Vec3 c = readVec3(in, where, "colour", kMaxMagnitude);
+    if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0) throw Error(where, "colour must not be negative");
+    return c;
+}
+
+double readPositive(std::istringstream& in, const std::string& where, const char* what) {
+    double v = 0.0;
+    if (!(in >> v) || !std::isfinite(v) || !(v > 0.0))
+        throw Error(where, std::string(what) + " needs a positive finite number");
     return v;
 }
 
@@ -35,23 +70,23 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
     if (!(in >> command)) return;
     if (command == "orbit") {
         double yaw, pitch;
-        if (!(in >> yaw >> pitch)) throw Error(where, "orbit needs yaw and pitch in degrees");
+        if (!(in >> yaw >> pitch) || !std::isfinite(yaw) || !std::isfinite(pitch))
+            throw Error(where, "orbit needs yaw and pitch in degrees");
         state.camera.orbit(yaw, pitch);
     } else if (command == "zoom") {
-        double factor;
-        if (!(in >> factor) || !(factor > 0.0)) throw Error(where, "zoom needs a positive factor");
-        state.camera.zoom(factor);
+        state.camera.zoom(readPositive(in, where, "zoom"));
     } else if (command == "pan") {
         double right, up;
-        if (!(in >> right >> up)) throw Error(where, "pan needs two fractions of the distance");
+        if (!(in >> right >> up) || !std::isfinite(right) || !std::isfinite(up))
+            throw Error(where, "pan needs two finite fractions of the distance");
         state.camera.pan(right, up);
     } else if (command == "light") {
         Light& light = lightAt(state, in, where);
         std::string what;
         in >> what;
         if (what == "position") light.position = readVec3(in, where, "position");
-        else if (what == "direction") light.direction = glm::normalize(readVec3(in, where, "direction"));
-        else if (what == "colour" || what == "color") light.power = readVec3(in, where, "colour");
+        else if (what == "direction") light.direction = readDirection(in, where);
+        else if (what == "colour" || what == "color") light.power = readColour(in, where);
         else throw Error(where, "light property must be position, direction or colour");
         state.lightsChanged = true;
     } else if (command == "add") {
@@ -62,11 +97,13 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
             light.position = readVec3(in, where, "position");
         } else if (type == "directional") {
             light.type = Light::Type::Directional;
-            light.direction = glm::normalize(readVec3(in, where, "direction"));
+            light.direction = readDirection(in, where);
         } else {
             throw Error(where, "add needs point or directional");
         }
-        light.power = readVec3(in, where, "colour");
+        light.power = readColour(in, where);
+        if (state.lights.size() >= kMaxLights)
+            throw Error(where, "at most " + std::to_string(kMaxLights) + " lights (docs/robustness.md)");
         state.lights.push_back(light);
         state.lightsChanged = true;
     } else if (command == "remove") {
@@ -74,11 +111,9 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         state.lights.erase(state.lights.begin() + (&light - state.lights.data()));
         state.lightsChanged = true;
     } else if (command == "extinction") {
-        float k;
-        if (!(in >> k) || !(k > 0.0f)) throw Error(where, "extinction needs a positive scale");
-        state.extinctionScale = k;
+        state.extinctionScale = float(readPositive(in, where, "extinction"));
     } else if (command == "exposure") {
-        if (!(in >> state.exposure) || !(state.exposure > 0.0f)) throw Error(where, "exposure needs a positive value");
+        state.exposure = float(readPositive(in, where, "exposure"));
     } else if (command == "surface") {
         state.surface = onOff(in, where);
     } else if (command == "scattering") {

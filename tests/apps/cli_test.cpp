@@ -2,6 +2,8 @@
 // the problem, a non-zero exit, and no output file left behind.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <fstream>
 
 #include "tests/support/test_support.h"
@@ -182,6 +184,101 @@ TEST(Cli, AutoSaysWhatItChoseAndWhy) {
     EXPECT_NE(run.stderrText.find("method ss on "), std::string::npos) << run.stderrText;
     EXPECT_NE(run.stderrText.find(", chosen by auto: the only interactive method built)"), std::string::npos)
         << run.stderrText;
+}
+
+// ---- Hostile input through the command (docs/robustness.md) -------------------
+
+// Class 1: no output may replace an input, serve two objects or replace a link.
+TEST_F(BadInput, PreprocessNeverWritesOverItsInputs) {
+    const std::string sphere = (test::modelsDir() / "sphere.obj").string();
+    dir.write("mesh.obj", kTetra);
+    std::string overMesh = scene("mesh.obj");
+    overMesh.replace(overMesh.find("out.lsf"), 7, "mesh.obj");
+    const auto before = std::filesystem::file_size(dir.path() / "mesh.obj");
+    expectFailure("preprocess " + dir.write("scene.json", overMesh).string(), "will not write over an input of this run");
+    EXPECT_EQ(std::filesystem::file_size(dir.path() / "mesh.obj"), before);
+    std::string overScene = scene(sphere);
+    overScene.replace(overScene.find("out.lsf"), 7, "scene.json");
+    const auto sceneFile = dir.write("scene.json", overScene);
+    const auto sceneSize = std::filesystem::file_size(sceneFile);
+    expectFailure("preprocess " + sceneFile.string(), "scene.json: will not write over an input of this run");
+    EXPECT_EQ(std::filesystem::file_size(sceneFile), sceneSize);
+    std::filesystem::create_symlink(dir.path() / "elsewhere.lsf", dir.path() / "out.lsf");
+    expectFailure(preprocess(scene(sphere)), "out.lsf: will not write over a symbolic link", "elsewhere.lsf");
+    EXPECT_TRUE(std::filesystem::is_symlink(dir.path() / "out.lsf"));
+}
+
+TEST_F(BadInput, TwoObjectsSharingASampleFileAreRefused) {
+    const std::string object = R"({"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                               R"(", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "out.lsf"})";
+    std::string text = scene((test::modelsDir() / "sphere.obj").string());
+    text.replace(text.rfind("]}"), 2, ", " + object + "]}");
+    expectFailure(preprocess(text), "out.lsf: is the output of two objects");
+}
+
+TEST_F(BadInput, AFailingObjectLeavesNoSampleFileOfAnother) {
+    const std::string good = R"({"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                             R"(", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "first.lsf"})";
+    // A sliver 1e-4 thick holds no offset layer: preprocessing fails on it, after the sphere.
+    dir.write("sliver.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e-4\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    const std::string sliver = R"({"mesh": "sliver.obj", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "second.lsf"})";
+    std::string text = scene("unused");
+    text.replace(text.find("\"objects\": ["), std::string::npos, "\"objects\": [" + good + ", " + sliver + "]}");
+    const auto run = test::runLucent(preprocess(text));  // progress lines come first, the error last
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.stderrText.find("lucent: error: " + (dir.path() / "sliver.obj").string() +
+                                  ": object is too thin for a single offset layer"), std::string::npos) << run.stderrText;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "first.lsf"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "second.lsf"));
+}
+
+TEST_F(BadInput, RenderNeverWritesOverItsInputs) {
+    // An image named like the mesh, through a hard link: identity decides, not the name.
+    dir.write("mesh.obj", kTetra);
+    std::filesystem::create_hard_link(dir.path() / "mesh.obj", dir.path() / "image.pfm");
+    const auto sceneFile = dir.write("scene.json", scene("mesh.obj"));
+    expectFailure("render " + sceneFile.string() + " --method reference -o " + (dir.path() / "image.pfm").string(),
+                  "image.pfm: will not write over an input of this run", "img.png");
+    EXPECT_EQ(std::filesystem::file_size(dir.path() / "mesh.obj"), std::string(kTetra).size());
+}
+
+// Class 4: a FIFO or a device as any input ends in an error, not a hang.
+TEST_F(BadInput, FifosAndDevicesAreRefusedNotWaitedOn) {
+    const auto fifo = dir.path() / "fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectFailure("preprocess " + dir.write("scene.json", scene(fifo.string())).string(), "fifo: cannot read mesh file: it is a FIFO");
+    expectFailure("preprocess " + fifo.string(), "fifo: cannot read scene file: it is a FIFO");
+    expectFailure("info /dev/zero", "/dev/zero: cannot read sample file: it is a character device");
+    expectFailure("info " + dir.path().string(), "cannot read sample file: it is a directory");
+    expectFailure("view " + dir.write("v.json", scene("m.obj")).string() + " --script /dev/urandom",
+                  "/dev/urandom: cannot read viewer script: it is a character device");
+    expectFailure("view " + dir.path().string() + "/v.json --script " + fifo.string(), "cannot read viewer script: it is a FIFO");
+}
+
+// Class 4 and 8: every number on the command line is finite and in range.
+TEST_F(BadInput, NumbersOnTheCommandLineAreFiniteAndInRange) {
+    const std::string s = dir.write("scene.json", scene("m.obj")).string();
+    expectFailure("render " + s + " -o x.png --tolerance nan", "--tolerance: 'nan' is not a finite number", "x.png");
+    expectFailure("render " + s + " -o x.png --exposure inf", "--exposure: 'inf' is not a finite number", "x.png");
+    expectFailure("preprocess " + s + " --width-factor nan", "--width-factor: 'nan' is not a finite number");
+    expectFailure("preprocess " + s + " --seed 18446744073709551616", "--seed: '18446744073709551616' is not a whole number");
+    expectFailure("bench accuracy " + s + " --tolerance -inf", "--tolerance: '-inf' is not a finite number");
+}
+
+// Class 2: the plot script gets the output directory as one argument; no shell
+// ever sees it. The sweep itself runs at draft quality on the cube.
+TEST(Cli, BenchAccuracyRunsNoShellAndWritesItsPlots) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "cube.obj").string(), R"("sigma_t": 1, "albedo": 0.5)"));
+    const std::string hostile = (dir.path() / "out'; touch PWNED; '").string();
+    const auto run = test::runLucent("bench accuracy " + sceneFile.string() + " --quality draft --knobs cutoff --size 8 "
+                                     "--frames 1 -o \"" + hostile + "\"", "cd " + dir.path().string() + " &&");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "PWNED"));
+    const auto rows = test::readCsv(std::filesystem::path(hostile) / "accuracy.csv");
+    EXPECT_EQ(rows.size(), 4u);  // four cut-offs
+    for (const char* plot : {"accuracy-pareto.png", "accuracy-knobs.png"})
+        EXPECT_GT(std::filesystem::file_size(std::filesystem::path(hostile) / plot), 1000u) << plot;
 }
 
 TEST(Cli, PreprocessThenInfo) {

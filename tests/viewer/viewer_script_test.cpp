@@ -1,0 +1,70 @@
+// Viewer script commands without a window: each command's effect on the state,
+// and the values the scene parser refuses refused here too.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "viewer/viewer_state.h"
+
+namespace lucent {
+namespace {
+
+SceneDesc oneLight() {
+    SceneDesc scene;
+    Light l;
+    l.position = Vec3(3, 0, 2);
+    l.power = Rgb(40.0);
+    scene.lights = {l};
+    return scene;
+}
+
+TEST(ViewerScript, CommandsChangeWhatTheySay) {
+    ViewerState state(oneLight());
+    const double distance = glm::length(state.camera.camera().position - state.camera.camera().target);
+    applyScriptLine(state, "zoom 0.5", "s:1");
+    EXPECT_NEAR(glm::length(state.camera.camera().position - state.camera.camera().target), 0.5 * distance, 1e-9);
+    applyScriptLine(state, "light 0 position -3 0 2", "s:2");
+    EXPECT_EQ(state.lights[0].position, Vec3(-3, 0, 2));
+    applyScriptLine(state, "add directional 0 -2e200 0 1 2 3  # a comment", "s:3");
+    ASSERT_EQ(state.lights.size(), 2u);
+    EXPECT_EQ(state.lights[1].direction, Vec3(0, -1, 0));
+    EXPECT_EQ(state.lights[1].power, Rgb(1, 2, 3));
+    applyScriptLine(state, "remove 0", "s:4");
+    EXPECT_EQ(state.lights.size(), 1u);
+    applyScriptLine(state, "extinction 2.5", "s:5");
+    EXPECT_EQ(state.extinctionScale, 2.5f);
+    applyScriptLine(state, "exposure 4", "s:6");
+    EXPECT_EQ(state.exposure, 4.0f);
+    applyScriptLine(state, "surface off", "s:7");
+    applyScriptLine(state, "scattering off", "s:8");
+    EXPECT_FALSE(state.surface || state.scattering);
+    applyScriptLine(state, "screenshot a.png", "s:9");
+    EXPECT_EQ(state.screenshots, std::vector<std::string>{"a.png"});
+    applyScriptLine(state, "quit", "s:10");
+    EXPECT_TRUE(state.quit);
+}
+
+TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
+    const std::pair<const char*, const char*> bad[] = {
+        {"light 0 direction 0 0 0", "s:1: direction must not be the zero vector"},
+        {"add point 0 0 0 -1 1 1", "s:1: colour must not be negative"},
+        {"light 0 colour 1e31 1 1", "s:1: colour must be finite and within +-1e+30"},
+        {"light 0 position 1e19 0 0", "s:1: position must be finite and within +-1e+13"},
+        {"extinction inf", "s:1: extinction needs a positive finite number"},
+        {"exposure -1", "s:1: exposure needs a positive finite number"},
+        {"zoom 0", "s:1: zoom needs a positive finite number"},
+        {"light 7 position 0 0 0", "s:1: no light with that index (there are 1)"},
+        {"fly away", "s:1: unknown command 'fly'"},
+    };
+    for (const auto& [line, message] : bad) {
+        ViewerState state(oneLight());
+        try {
+            applyScriptLine(state, line, "s:1");
+            ADD_FAILURE() << line;
+        } catch (const Error& e) {
+            EXPECT_STREQ(e.what(), message) << line;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace lucent
