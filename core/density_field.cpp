@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/isolated.h"
 
 namespace lucent {
 
@@ -162,6 +163,13 @@ std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, cons
     const std::string name = file.string();
     regularFileSize(file, "OpenVDB file");
     openvdb::initialize();
+    // OpenVDB asserts on some corrupt files (fuzz/grid_fuzzer.cpp): read it in a child first.
+    const std::string death = deathInChild([&] {
+        openvdb::io::File vdb(name);
+        vdb.open();
+        vdb.readGrid(gridName);
+    });
+    if (!death.empty()) throw Error(name, "corrupt OpenVDB file (the OpenVDB reader died on it: " + death + ")");
     openvdb::FloatGrid::Ptr grid;
     try {
         openvdb::io::File vdb(name);

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/isolated.h"
 #include "core/limits.h"
 #include "core/mesh_file_check.h"
 
@@ -105,8 +106,16 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
         throw Error(file, "unsupported mesh format '" + extension + "' (use .obj, .off, .ply or .stl)");
     checkMeshFileClaims(path, extension, size);
     if (extension == ".stl") rejectNonFiniteBinaryStl(path);
-    OmMesh om;
+    // OpenMesh's readers crash on some malformed files (fuzz/mesh_fuzzer.cpp): read it in a child first,
+    // with OpenMesh's error stream already taken over so that the child prints nothing.
     OpenMeshErrorCapture& capture = OpenMeshErrorCapture::instance();
+    const std::string death = deathInChild([&] {
+        OmMesh probe;
+        OpenMesh::IO::Options probeOptions;
+        OpenMesh::IO::read_mesh(probe, file, probeOptions);
+    });
+    if (!death.empty()) throw Error(file, "malformed mesh file (the OpenMesh reader died on it: " + death + ")");
+    OmMesh om;
     capture.clear();
     OpenMesh::IO::Options options;
     if (!OpenMesh::IO::read_mesh(om, file, options))

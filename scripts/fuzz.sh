@@ -3,6 +3,7 @@
 # time on its committed corpus under fuzz/corpus/. New interesting inputs are
 # added to the corpus; a crash stops the script with the reproducer's path.
 #   scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 60)
+#   FUZZ_TARGETS="mesh grid" scripts/fuzz.sh 600   (a subset)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -12,15 +13,15 @@ if ! command -v clang++ > /dev/null || [ ! -d /usr/lib/llvm-14/lib/clang/14.0.6/
   "${sudo[@]}" apt-get install -y -q --no-install-recommends clang libclang-rt-14-dev
 fi
 cmake --preset fuzz > /dev/null
-cmake --build build-fuzz -j"$(nproc)" --target lucent-fuzz-scene lucent-fuzz-sample_file
+cmake --build build-fuzz -j"$(nproc)" --target lucent-fuzz-scene lucent-fuzz-sample_file lucent-fuzz-mesh lucent-fuzz-grid
 mkdir -p build-fuzz/artifacts
-for target in scene sample_file; do
+for target in ${FUZZ_TARGETS:-scene sample_file mesh grid}; do
   corpus=fuzz/corpus/${target//_/-}
   found=build-fuzz/found-$target
   rm -rf "$found" && mkdir -p "$found"
   echo "fuzz: lucent-fuzz-$target for ${seconds}s on $corpus"
   build-fuzz/bin/lucent-fuzz-$target -max_total_time="$seconds" -artifact_prefix=build-fuzz/artifacts/ \
-    -print_final_stats=1 "$found" "$corpus"
+    -print_final_stats=1 -rss_limit_mb=8192 "$found" "$corpus"
   # Keep the corpus small: add only inputs that reach new coverage.
   build-fuzz/bin/lucent-fuzz-$target -merge=1 "$corpus" "$found" 2> /dev/null
 done
