@@ -17,7 +17,8 @@ namespace lucent {
 Command addRenderCommand(CLI::App& app) {
     struct Options {
         std::string scene, output, method, backend;
-        int width = 0, height = 0, threads = 0;
+        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20;
+        std::string seed = "1";
         bool noSurface = false;
         double tolerance = 1e-3;
         float exposure = 0.0f;
@@ -36,6 +37,12 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_flag("--no-surface", o->noSurface, "Leave out the reflected surface term");
     sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+    sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
+    sub->add_option("--max-scatter", o->maxScatter,
+                    "Collisions per path of --method path (1: single scattering; default unlimited)")
+        ->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--seed", o->seed, "Random seed of --method path; the same seed gives the same image")
+        ->check(unsigned64());
     sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")->check(finiteRange(0.0, 1e30));
     return [o] {
         SceneDesc scene = parseScene(o->scene);
@@ -59,6 +66,9 @@ Command addRenderCommand(CLI::App& app) {
         settings.tolerance = o->tolerance;
         settings.threads = o->threads;
         settings.backend = o->backend;
+        settings.samplesPerPixel = o->samples;
+        settings.maxScatter = o->maxScatter;
+        settings.seed = std::stoull(o->seed);
         std::string servedBy;
         const Image image = renderWith(*method.entry, loaded, settings, &servedBy);
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);

@@ -4,6 +4,7 @@
 // Each stage implements it in its own folder (reference/, runtime/, later
 // hybrid/); methods/method_table.cpp lists them, with their factories, for the
 // command line, the viewer and the benchmarks.
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -20,6 +21,9 @@ struct MethodSettings {
     double tolerance = 1e-3; // quadrature methods: relative error target per pixel
     std::string backend;     // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
     double cutoff = 1e-4;    // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
+    int samplesPerPixel = 64;      // Monte Carlo methods: paths per pixel
+    int maxScatter = 1 << 20;      // Monte Carlo methods: collisions per path (1: single scattering)
+    uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
 };
 
 class Method {

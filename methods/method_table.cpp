@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "reference/path_method.h"
 #include "reference/reference_method.h"
 #include "runtime/ss_method.h"
 
@@ -14,6 +15,8 @@ const std::vector<MethodEntry>& methodTable() {
          [] { return std::string(); }, [] { return std::make_unique<SsMethod>(); }},
         {"reference", "exact single scattering by quadrature on the CPU (the ground truth of ss)", false, false,
          [] { return std::string(); }, [] { return std::make_unique<ReferenceMethod>(); }},
+        {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",
+         false, false, [] { return std::string(); }, [] { return std::make_unique<PathMethod>(); }},
     };
     return table;
 }

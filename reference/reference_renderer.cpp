@@ -11,6 +11,7 @@
 
 #include "core/camera_rays.h"
 #include "core/progress.h"
+#include "reference/surface_reflection.h"
 
 namespace lucent {
 namespace {
@@ -119,27 +120,6 @@ Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, co
     return sigmaS * sum;
 }
 
-Rgb ReferenceRenderer::surfaceReflection(const VolumeObject& object, const Vec3& x, const Vec3& n,
-                                         const Vec3& viewDir) const {
-    const SurfaceDesc& s = *object.desc().surface;
-    Rgb sum(0.0);
-    const Vec3 toEye = -viewDir;
-    for (const Light& light : scene_.lights) {
-        Vec3 toLight = light.type == Light::Type::Point ? light.position - x : -light.direction;
-        const double d2 = light.type == Light::Type::Point ? glm::dot(toLight, toLight) : 1.0;
-        if (d2 == 0.0) continue;
-        toLight = glm::normalize(toLight);
-        const double cosI = glm::dot(n, toLight);
-        if (cosI <= 0.0) continue;
-        const Vec3 reflected = 2.0 * cosI * n - toLight;
-        const double cosR = std::max(0.0, glm::dot(reflected, toEye));
-        // Energy-normalised Phong BRDF times irradiance.
-        const Rgb brdf = s.diffuse / kPi + s.specular * (s.shininess + 2.0) / (2.0 * kPi) * std::pow(cosR, s.shininess);
-        sum += brdf * light.power / d2 * cosI;
-    }
-    return sum;
-}
-
 Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const {
     // The camera ray stops at the first opaque blocker.
     double tStop = kInfinity;
@@ -163,7 +143,8 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
             o.boundary().crossings(origin, dir, cs);
             if (!cs.empty() && !cs.front().exits && cs.front().t < std::min(nearestSurface, tStop)) {
                 nearestSurface = cs.front().t;
-                surface = surfaceReflection(o, origin + cs.front().t * dir, o.boundary().unitNormal(cs.front().face), dir);
+                surface = phongSurfaceReflection(*o.desc().surface, scene_.lights, origin + cs.front().t * dir,
+                                                 o.boundary().unitNormal(cs.front().face), dir);
             }
         }
     }

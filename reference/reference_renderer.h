@@ -34,7 +34,6 @@ public:
 
 private:
     Rgb inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
-    Rgb surfaceReflection(const VolumeObject& object, const Vec3& x, const Vec3& normal, const Vec3& viewDir) const;
     double densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const;
 
     const SceneDesc& scene_;

@@ -6,6 +6,7 @@
 
 #include <fstream>
 
+#include "core/image.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -162,15 +163,15 @@ TEST_F(BadInput, SceneNamesAMethodThisBuildLacks) {
     std::string text = scene((test::modelsDir() / "sphere.obj").string());
     text.insert(text.rfind('}'), R"(, "render": {"method": "lbl"})");
     expectFailure("render " + dir.write("scene.json", text).string() + " -o " + (dir.path() / "img.png").string(),
-                  "scene.json: /render/method: method 'lbl' is not built into this binary (built: ss, reference, auto)",
+                  "scene.json: /render/method: method 'lbl' is not built into this binary (built: ss, reference, path, auto)",
                   "img.png");
 }
 
 TEST(Cli, HelpOffersOnlyTheMethodsThisBuildHas) {
     const auto help = test::runLucent("render --help");
     ASSERT_EQ(help.exitCode, 0) << help.stderrText;
-    EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,auto}"), std::string::npos) << help.stdoutText;
-    for (const char* absent : {"lbl", "mdom", "path:"})
+    EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,path,auto}"), std::string::npos) << help.stdoutText;
+    for (const char* absent : {"lbl", "mdom"})
         EXPECT_EQ(help.stdoutText.find(absent), std::string::npos) << absent;
 }
 
@@ -279,6 +280,29 @@ TEST(Cli, BenchAccuracyRunsNoShellAndWritesItsPlots) {
     EXPECT_EQ(rows.size(), 4u);  // four cut-offs
     for (const char* plot : {"accuracy-pareto.png", "accuracy-knobs.png"})
         EXPECT_GT(std::filesystem::file_size(std::filesystem::path(hostile) / plot), 1000u) << plot;
+}
+
+// --method path through the command: no sample file needed; the seed and the
+// collision count reach the tracer (a different seed, a different image).
+TEST(Cli, PathTracerRendersWithItsOptions) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    auto render = [&](const std::string& name, const std::string& options) {
+        const auto run = test::runLucent("render " + sceneFile.string() + " --method path --width 8 --height 8 -o " +
+                                         (dir.path() / name).string() + " " + options);
+        EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+        EXPECT_NE(run.stderrText.find("method path"), std::string::npos) << run.stderrText;
+        return readPfm(dir.path() / name);
+    };
+    const Image a = render("a.pfm", "--samples 4 --seed 5"), b = render("b.pfm", "--samples 4 --seed 5 --threads 1");
+    const Image c = render("c.pfm", "--samples 4 --seed 6"), single = render("s.pfm", "--samples 4 --seed 5 --max-scatter 1");
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_NE(a.pixels, c.pixels);
+    double all = 0.0, one = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) all += a.pixels[i].g, one += single.pixels[i].g;
+    EXPECT_GT(all, one);  // albedo 0.5: the higher orders add light
+    const auto bad = test::runLucent("render " + sceneFile.string() + " --method path -o x.pfm --samples 0");
+    EXPECT_NE(bad.exitCode, 0);
 }
 
 TEST(Cli, PreprocessThenInfo) {

@@ -33,7 +33,7 @@ TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
         findMethod("lbl");
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_STREQ(e.what(), "method 'lbl' is not built into this binary (built: ss, reference, auto)");
+        EXPECT_STREQ(e.what(), "method 'lbl' is not built into this binary (built: ss, reference, path, auto)");
     }
     SceneDesc scene;
     scene.file = "scene.json";

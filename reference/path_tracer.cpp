@@ -1,0 +1,228 @@
+#include "reference/path_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/camera_rays.h"
+#include "core/progress.h"
+#include "reference/surface_reflection.h"
+
+namespace lucent {
+namespace {
+
+double channelOf(const Rgb& c, int channel) { return channel < 0 ? c.r : c[channel]; }
+
+// Keeps only the traced channel of an RGB weight.
+Rgb masked(const Rgb& c, int channel) {
+    if (channel < 0) return c;
+    Rgb m(0.0);
+    m[channel] = c[channel];
+    return m;
+}
+
+// The largest extinction the object's medium reaches in the channel: delta tracking's majorant.
+double majorant(const VolumeObject& o, int channel) {
+    return channelOf(o.desc().medium.sigmaT, channel) * o.density().maximum();
+}
+
+}  // namespace
+
+Vec3 sampleHenyeyGreenstein(const Vec3& dir, double g, double xi1, double xi2) {
+    double cosTheta;
+    if (std::abs(g) < 1e-4) {
+        cosTheta = 1.0 - 2.0 * xi1;
+    } else {
+        // Inversion of the HG cumulative distribution of the angle to dir.
+        const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * xi1);
+        cosTheta = (1.0 + g * g - s * s) / (2.0 * g);
+    }
+    cosTheta = std::clamp(cosTheta, -1.0, 1.0);
+    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+    const double phi = 2.0 * kPi * xi2;
+    const Vec3 t1 = glm::normalize(std::abs(dir.x) < 0.9 ? glm::cross(dir, Vec3(1, 0, 0)) : glm::cross(dir, Vec3(0, 1, 0)));
+    const Vec3 t2 = glm::cross(dir, t1);
+    return glm::normalize(cosTheta * dir + sinTheta * (std::cos(phi) * t1 + std::sin(phi) * t2));
+}
+
+PathTracer::PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects)
+    : scene_(scene), objects_(objects) {
+    for (const VolumeObject& o : objects_) {
+        const Rgb& s = o.desc().medium.sigmaT;
+        grey_ = grey_ && s.r == s.g && s.g == s.b;
+    }
+}
+
+double PathTracer::blockerDistance(const Vec3& origin, const Vec3& dir) const {
+    double t = kInfinity;
+    for (const VolumeObject& o : objects_) t = std::min(t, o.firstBlockerHit(origin, dir));
+    return t;
+}
+
+std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
+                                                                 const VolumeObject* inside, Rng& rng,
+                                                                 int channel) const {
+    struct Span {
+        Interval interval;
+        const VolumeObject* object;
+    };
+    thread_local std::vector<Span> spans;
+    thread_local std::vector<Interval> intervals;
+    spans.clear();
+    for (const VolumeObject& o : objects_) {
+        o.boundary().insideIntervals(origin, dir, tMax, intervals, &o == inside);
+        for (const Interval& i : intervals) spans.push_back({i, &o});
+    }
+    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.interval.t0 < b.interval.t0; });
+    for (const Span& span : spans) {
+        const VolumeObject& o = *span.object;
+        const double mu = majorant(o, channel);
+        if (!(mu > 0.0)) continue;
+        const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
+        // Delta tracking: tentative collisions at rate mu, real with probability sigma(x) / mu.
+        for (double t = span.interval.t0;;) {
+            t -= std::log(1.0 - rng.uniform()) / mu;
+            if (t >= span.interval.t1) break;
+            const double sigma = sigmaT * o.density().at(origin + t * dir);
+            if (rng.uniform() * mu < sigma) return Collision{t, &o};
+        }
+    }
+    return std::nullopt;
+}
+
+Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
+    Rgb sum(0.0);
+    for (const Light& light : scene_.lights) {
+        Vec3 toLight;
+        double distance;
+        Rgb irradiance;
+        if (light.type == Light::Type::Point) {
+            toLight = light.position - x;
+            distance = glm::length(toLight);
+            if (distance == 0.0) continue;
+            toLight /= distance;
+            irradiance = light.power / (distance * distance);
+        } else {
+            toLight = -light.direction;
+            distance = kInfinity;
+            irradiance = light.power;
+        }
+        Rgb transmitted(1.0);
+        for (const VolumeObject& o : objects_)
+            transmitted *= transmittance(o.desc().medium.sigmaT, o.densityPath(x, toLight, distance));
+        sum += henyeyGreenstein(glm::dot(toLight, dir), object.desc().medium.g) * irradiance * transmitted;
+    }
+    return sum;
+}
+
+Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+                         int channel) const {
+    Rgb total(0.0);
+    // The surface term at the first front face before any blocker, as the reference adds it.
+    double tStop = blockerDistance(origin, dir);
+    if (settings.surface && scene_.render.surface) {
+        double nearest = kInfinity;
+        std::vector<Crossing> crossings;
+        for (const VolumeObject& o : objects_) {
+            if (!o.desc().surface) continue;
+            o.boundary().crossings(origin, dir, crossings);
+            if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
+                nearest = crossings.front().t;
+                total = phongSurfaceReflection(*o.desc().surface, scene_.lights, origin + nearest * dir,
+                                               o.boundary().unitNormal(crossings.front().face), dir);
+            }
+        }
+        total = masked(total, channel);
+    }
+    const VolumeObject* inside = nullptr;
+    for (const VolumeObject& o : objects_)
+        if (o.contains(origin)) inside = &o;
+    Vec3 x = origin, w = dir;
+    Rgb throughput(1.0);
+    for (int collisions = 0; collisions < settings.maxScatter; ++collisions) {
+        const std::optional<Collision> c = sampleCollision(x, w, tStop, inside, rng, channel);
+        if (!c) break;
+        x += c->t * w;
+        inside = c->object;
+        // Free flights sampled in proportion to sigma_t T leave the albedo as the
+        // weight of each collision (the collision estimator).
+        throughput *= masked(inside->desc().medium.albedo, channel);
+        total += throughput * masked(gatherLights(*inside, x, w), channel);
+        // Russian roulette once the path has scattered a few times.
+        if (collisions >= 3) {
+            const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
+            if (rng.uniform() >= keep) break;
+            throughput /= keep;
+        }
+        const double xi1 = rng.uniform(), xi2 = rng.uniform();
+        w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+        tStop = blockerDistance(x, w);
+    }
+    return total;
+}
+
+PathTracer::Exit PathTracer::walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const {
+    Exit exit;
+    const VolumeObject* inside = nullptr;
+    for (const VolumeObject& o : objects_)
+        if (o.contains(origin)) inside = &o;
+    Vec3 x = origin, w = dir;
+    while (true) {
+        const double tStop = blockerDistance(x, w);
+        const std::optional<Collision> c = sampleCollision(x, w, tStop, inside, rng, channel);
+        if (!c) {
+            exit.escaped = tStop == kInfinity;
+            exit.position = x;
+            exit.direction = w;
+            return exit;
+        }
+        if (exit.collisions == maxScatter) return exit;
+        x += c->t * w;
+        inside = c->object;
+        exit.weight *= inside->desc().medium.albedo;
+        ++exit.collisions;
+        const double xi1 = rng.uniform(), xi2 = rng.uniform();
+        w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+    }
+}
+
+PathTracer::Result PathTracer::render(const PathSettings& settings) const {
+    const Camera& cam = scene_.camera;
+    const CameraRays rays(cam);
+    Result result{Image(cam.width, cam.height), Image(cam.width, cam.height)};
+    const int spp = std::max(settings.samplesPerPixel, 1);
+    Progress progress("path tracing", size_t(cam.height));
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), [&](const tbb::blocked_range<int>& range) {
+            for (int y = range.begin(); y < range.end(); ++y) {
+                for (int x = 0; x < cam.width; ++x) {
+                    // One stream per pixel: the image is the same for any thread count.
+                    Rng rng(settings.seed, uint64_t(y) * uint64_t(cam.width) + uint64_t(x));
+                    const Vec3 dir = rays.direction(x + 0.5, y + 0.5);
+                    Rgb sum(0.0), sumSquares(0.0);
+                    for (int s = 0; s < spp; ++s) {
+                        Rgb L(0.0);
+                        if (grey_) L = radiance(rays.origin(), dir, rng, settings, -1);
+                        else
+                            for (int channel = 0; channel < 3; ++channel)
+                                L += radiance(rays.origin(), dir, rng, settings, channel);
+                        sum += L;
+                        sumSquares += L * L;
+                    }
+                    const Rgb mean = sum / double(spp);
+                    const Rgb variance = glm::max(sumSquares / double(spp) - mean * mean, Rgb(0.0));
+                    result.mean.at(x, y) = glm::vec3(mean);
+                    result.standardError.at(x, y) = glm::vec3(glm::sqrt(variance / double(std::max(spp - 1, 1))));
+                }
+                progress.advance();
+            }
+        });
+    });
+    return result;
+}
+
+}  // namespace lucent

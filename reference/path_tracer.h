@@ -1,0 +1,86 @@
+#pragma once
+// The ground truth for full light transport (--method path): a volumetric path
+// tracer on Lucent's exact scene semantics. From every pixel centre (as the
+// single-scattering reference) a camera path enters the media, collides where
+// delta tracking against each object's majorant says (exact for constant
+// density, unbiased for layers and grids), and at every collision gathers each
+// light directly (next-event estimation: the transmittance to the light is the
+// exact exp(-sigma_t path integral), through every object, zero through a
+// blocker) before scattering by Henyey-Greenstein. Boundaries are index-matched;
+// blockers absorb. Paths end after maxScatter collisions (1: single scattering,
+// which must agree with --method reference) or by Russian roulette.
+//
+// Media whose sigma_t differs between colour channels are traced once per
+// channel, each path sampling that channel's extinction; grey media trace one
+// path for all three.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/image.h"
+#include "core/rng.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+
+namespace lucent {
+
+struct PathSettings {
+    int samplesPerPixel = 64;
+    int maxScatter = 1 << 20;  // collisions gathered per path: 1 is single scattering
+    uint64_t seed = 1;
+    int threads = 0;           // 0: all cores
+    bool surface = true;       // add the direct Phong surface term at the first front face
+};
+
+class PathTracer {
+public:
+    PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects);
+
+    struct Result {
+        Image mean;           // radiance per pixel
+        Image standardError;  // of the mean, per pixel and channel
+    };
+    Result render(const PathSettings& settings) const;
+
+    // One camera path's radiance estimate along a unit direction. channel < 0
+    // traces all channels at once (grey media only), else that channel alone.
+    Rgb radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings, int channel) const;
+
+    // The analog random walk of one particle that starts at origin travelling
+    // along dir, with no light gathered: where it leaves the media, for tallies
+    // of reflectance and transmittance (the slab tests).
+    struct Exit {
+        bool escaped = false;     // false: absorbed by a blocker or stopped by maxScatter
+        Vec3 position{0.0}, direction{0.0};
+        Rgb weight{1.0};          // the product of the albedos met
+        int collisions = 0;
+    };
+    Exit walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
+
+    // Whether every medium is grey (one path serves all three channels).
+    bool grey() const { return grey_; }
+
+private:
+    struct Collision {
+        double t;
+        const VolumeObject* object;
+    };
+    // The first collision along origin + t dir before tMax, or none. inside is the
+    // object origin lies in (nullptr: none).
+    std::optional<Collision> sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
+                                             const VolumeObject* inside, Rng& rng, int channel) const;
+    // Where the ray stops at an opaque blocker, or infinity.
+    double blockerDistance(const Vec3& origin, const Vec3& dir) const;
+    // sum_j p(w_j, dir) E_j T_j at x: the light arriving at x, scattered along dir.
+    Rgb gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;
+
+    const SceneDesc& scene_;
+    const std::vector<VolumeObject>& objects_;
+    bool grey_ = true;
+};
+
+// A direction from the Henyey-Greenstein distribution with mean cosine g around
+// the unit propagation direction dir (xi1, xi2 uniform in [0, 1)).
+Vec3 sampleHenyeyGreenstein(const Vec3& dir, double g, double xi1, double xi2);
+
+}  // namespace lucent
