@@ -9,8 +9,10 @@
 
 namespace lucent {
 
-// Runs work in a forked child and waits. Returns "" when the child finished
-// (whatever work threw), else how it died ("signal 11 (Segmentation fault)").
-std::string deathInChild(const std::function<void()>& work);
+// Runs work in a forked child and waits at most timeoutSeconds (a reader can
+// also loop forever: OpenMesh's PLY header parser does on some keywords).
+// Returns "" when the child finished (whatever work threw), else how it died
+// ("signal 11 (Segmentation fault)") or "no answer after N s" (it is killed).
+std::string deathInChild(const std::function<void()>& work, double timeoutSeconds);
 
 }  // namespace lucent

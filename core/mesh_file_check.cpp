@@ -39,42 +39,69 @@ uint64_t plyTypeSize(const std::filesystem::path& file, const std::string& type)
     fail(file, "unknown PLY property type '" + type + "'");
 }
 
+// The header, strictly: "ply", one format line, then only comment, obj_info,
+// element and property lines up to end_header, each well formed. OpenMesh's own
+// header parser crashes or loops forever on some malformed headers (fuzz/), so
+// it only ever sees one that passed here.
 void checkPly(const std::filesystem::path& file, uint64_t size) {
     std::ifstream in(file, std::ios::binary);
     std::string line;
-    bool ascii = true;
-    uint64_t headerBytes = 0, needed = 0;
+    bool ascii = true, sawFormat = false;
+    uint64_t headerBytes = 0, needed = 0, lineNumber = 0;
     struct Element {
         uint64_t count = 0, minBytes = 0;
     };
     std::vector<Element> elements;
+    auto bad = [&](const std::string& problem) { fail(file, "PLY header line " + std::to_string(lineNumber) + ": " + problem); };
     while (std::getline(in, line)) {
+        ++lineNumber;
         headerBytes += line.size() + 1;
         if (headerBytes > 65536) fail(file, "PLY header longer than 64 KiB");
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        for (const char c : line)
+            if (static_cast<unsigned char>(c) < 0x20 && c != '\t') bad("control character in the header");
         std::istringstream words(line);
-        std::string keyword;
+        std::string keyword, extra;
         words >> keyword;
-        if (keyword == "format") {
-            std::string format;
-            words >> format;
+        if (lineNumber == 1) {
+            if (line != "ply") fail(file, "not a PLY file (the first line is not 'ply')");
+        } else if (keyword == "format") {
+            std::string format, version;
+            words >> format >> version;
+            if (sawFormat || (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian") ||
+                version != "1.0" || (words >> extra))
+                bad("expected one 'format ascii|binary_little_endian|binary_big_endian 1.0'");
             ascii = format == "ascii";
+            sawFormat = true;
+        } else if (keyword == "comment" || keyword == "obj_info") {
+            continue;
         } else if (keyword == "element") {
             std::string name, count;
-            words >> name >> count;
+            if (!(words >> name >> count) || (words >> extra)) bad("expected 'element NAME COUNT'");
             elements.push_back({parseCount(file, count, "PLY element"), 0});
             checkCount(file, elements.back().count, name == "face" ? "faces" : "elements");
-        } else if (keyword == "property" && !elements.empty()) {
-            std::string type;
-            words >> type;
-            if (type == "list") words >> type;  // the count's type: the list may be empty
+        } else if (keyword == "property") {
+            if (elements.empty()) bad("property before any element");
+            std::string type, name;
+            if (!(words >> type)) bad("property without a type");
+            if (type == "list") {
+                std::string countType, itemType;
+                if (!(words >> countType >> itemType >> name) || (words >> extra)) bad("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+                plyTypeSize(file, itemType);
+                type = countType;  // the list may be empty: its count is all it surely holds
+            } else if (!(words >> name) || (words >> extra)) {
+                bad("expected 'property TYPE NAME'");
+            }
             elements.back().minBytes += ascii ? 2 : plyTypeSize(file, type);
         } else if (keyword == "end_header") {
+            if (!sawFormat) bad("end_header before any format line");
             for (const Element& e : elements) needed += e.count * e.minBytes;
             if (needed > size - std::min(size, headerBytes))
                 fail(file, "PLY header claims elements of at least " + std::to_string(needed) + " bytes, but the file holds " +
                                std::to_string(size - std::min(size, headerBytes)) + " after its header");
             return;
+        } else {
+            bad("unknown keyword '" + keyword + "'");
         }
     }
     fail(file, "PLY header has no end_header line");
