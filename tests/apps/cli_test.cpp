@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "core/image.h"
 #include "tests/support/test_support.h"
@@ -303,6 +304,33 @@ TEST(Cli, PathTracerRendersWithItsOptions) {
     EXPECT_GT(all, one);  // albedo 0.5: the higher orders add light
     const auto bad = test::runLucent("render " + sceneFile.string() + " --method path -o x.pfm --samples 0");
     EXPECT_NE(bad.exitCode, 0);
+}
+
+// The same --seed gives byte-identical sample files and images for any --threads,
+// through the command line, on a homogeneous sphere and on the torus cube (an
+// opaque blocker inside).
+TEST(Cli, SameSeedSameFilesForAnyThreadCount) {
+    for (const char* model : {"sphere.json", "torus-cube.json"}) {
+        test::ScratchDir dir;
+        for (const std::string& file : {std::string(model), std::string("sphere.obj"), std::string("cube.obj"),
+                                        std::string("torus.obj")})
+            std::filesystem::copy_file(test::modelsDir() / file, dir.path() / file);
+        const std::string sceneFile = (dir.path() / model).string();
+        const std::string samples = (dir.path() / (std::filesystem::path(model).stem().string() + ".lsf")).string();
+        std::vector<std::vector<char>> files;
+        for (const char* threads : {"1", "2"}) {
+            const auto run = test::runLucent("preprocess " + sceneFile + " --quality draft --samples 1500 --seed 9 --threads " + threads);
+            ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+            std::ifstream in(samples, std::ios::binary);
+            files.emplace_back((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            const auto image = test::runLucent("render " + sceneFile + " --method path --samples 2 --width 12 --height 12 --seed 3 --threads " +
+                                               threads + " -o " + (dir.path() / (std::string(threads) + ".pfm")).string());
+            ASSERT_EQ(image.exitCode, 0) << image.stderrText;
+        }
+        EXPECT_GT(files[0].size(), 1000u) << model;
+        EXPECT_EQ(files[0], files[1]) << model;
+        EXPECT_EQ(readPfm(dir.path() / "1.pfm").pixels, readPfm(dir.path() / "2.pfm").pixels) << model;
+    }
 }
 
 TEST(Cli, PreprocessThenInfo) {
