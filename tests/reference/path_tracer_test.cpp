@@ -29,12 +29,7 @@ namespace {
 // A slab [-40, 40]^2 x [0, thickness]: 40 optical depths wide, so that light
 // leaving through the sides is negligible.
 std::filesystem::path writeSlab(const test::ScratchDir& dir, double thickness) {
-    std::string obj;
-    for (int k = 0; k < 8; ++k)
-        obj += "v " + std::to_string(k & 1 ? 40.0 : -40.0) + " " + std::to_string(k & 2 ? 40.0 : -40.0) + " " +
-               std::to_string(k & 4 ? thickness : 0.0) + "\n";
-    obj += "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
-    return dir.write("slab.obj", obj);
+    return test::writeBox(dir, "slab.obj", Vec3(-40.0, -40.0, 0.0), Vec3(40.0, 40.0, thickness));
 }
 
 ObjectDesc slabObject(const std::filesystem::path& mesh, double albedo, double g) {

@@ -31,6 +31,18 @@ std::filesystem::path sourceDir() { return LUCENT_SOURCE_DIR; }
 std::filesystem::path modelsDir() { return sourceDir() / "models"; }
 std::filesystem::path dataDir() { return sourceDir() / "tests" / "data"; }
 
+std::filesystem::path writeBox(const ScratchDir& dir, const std::string& name, const Vec3& lo, const Vec3& hi) {
+    std::string obj;
+    for (int k = 0; k < 8; ++k) {
+        const Vec3 v(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+        char line[128];
+        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", v.x, v.y, v.z);
+        obj += line;
+    }
+    obj += "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+    return dir.write(name, obj);
+}
+
 ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo) {
     ObjectDesc o;
     o.name = mesh.filename().string();

@@ -26,6 +26,9 @@ std::filesystem::path sourceDir();
 std::filesystem::path modelsDir();
 std::filesystem::path dataDir();
 
+// An axis-aligned box [lo, hi] as an OBJ file in dir (outward faces).
+std::filesystem::path writeBox(const ScratchDir& dir, const std::string& name, const Vec3& lo, const Vec3& hi);
+
 // The ObjectDesc for a mesh with a constant medium, fingerprint left 0.
 ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo = 0.5);
 
