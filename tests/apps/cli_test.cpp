@@ -333,6 +333,29 @@ TEST(Cli, SameSeedSameFilesForAnyThreadCount) {
     }
 }
 
+// Without a usable EGL, the default backend falls back to OSMesa and says so.
+TEST(Cli, FallsBackFromEglToOsmesa) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
+    const auto run = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.pfm").string() +
+                                         " --width 8 --height 8", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+    EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_NE(run.stderrText.find("method ss on osmesa"), std::string::npos) << run.stderrText;
+}
+
+// --scheme published writes the thesis's scheme, which info reports.
+TEST(Cli, PublishedSchemeReachesTheSampleFile) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300 --scheme published").exitCode, 0);
+    const auto info = test::runLucent("info " + (dir.path() / "out.lsf").string());
+    EXPECT_NE(info.stdoutText.find("scheme                 published"), std::string::npos) << info.stdoutText;
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
+    EXPECT_NE(test::runLucent("info " + (dir.path() / "out.lsf").string()).stdoutText.find("scheme                 lucent"),
+              std::string::npos);
+}
+
 TEST(Cli, PreprocessThenInfo) {
     test::ScratchDir dir;
     const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));

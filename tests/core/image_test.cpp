@@ -1,6 +1,12 @@
 #include "core/image.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <fstream>
 
 #include "core/error.h"
 #include "tests/support/test_support.h"
@@ -30,6 +36,36 @@ TEST(Image, WritesPngAndExr) {
     EXPECT_GT(std::filesystem::file_size(dir.path() / "a.png"), 50u);
     EXPECT_GT(std::filesystem::file_size(dir.path() / "a.exr"), 50u);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 2);
+}
+
+// A write that fails midway (here: past a file-size limit, as on a full disk)
+// leaves the existing output as it was and no temporary file behind.
+TEST(Image, AWriteFailingMidwayKeepsTheExistingOutput) {
+    test::ScratchDir dir;
+    const auto target = dir.path() / "a.pfm";
+    std::ofstream(target) << "the previous image";
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing
+        const rlimit limit{4096, 4096};
+        ::setrlimit(RLIMIT_FSIZE, &limit);
+        try {
+            writeImage(target, Image(64, 64));  // 48 KiB of pixels
+        } catch (const Error&) {
+            ::_exit(3);
+        }
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 3);  // the writer reported the failure
+    std::ifstream in(target);
+    std::string text;
+    std::getline(in, text);
+    EXPECT_EQ(text, "the previous image");
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
 TEST(Image, UnwritablePathIsAnErrorAndLeavesNothing) {

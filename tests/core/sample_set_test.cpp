@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <fstream>
 
 #include "core/error.h"
@@ -119,6 +121,34 @@ TEST(SampleFile, RejectsDamagedFiles) {
     grown.push_back(0);
     EXPECT_NE(damaged("grown.lsf", grown).find("counts need"), std::string::npos);
     EXPECT_NE(readError(dir.path() / "absent.lsf").find("cannot open sample file"), std::string::npos);
+}
+
+// A field patched at its documented offset (docs/sample-file.md), the checksum
+// recomputed: each of the reader's header checks refuses its own field.
+TEST(SampleFile, RejectsOutOfRangeHeaderFields) {
+    test::ScratchDir dir;
+    writeSampleFile(dir.path() / "good.lsf", makeSamples(2));
+    const std::vector<char> good = bytesOf(dir.path() / "good.lsf");
+    auto patched = [&](size_t offset, uint32_t value) {
+        std::vector<char> b = good;
+        std::memcpy(b.data() + offset, &value, 4);
+        uint64_t fnv = 0xcbf29ce484222325ull;
+        for (size_t i = 0; i + 8 < b.size(); ++i) fnv = (fnv ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
+        std::memcpy(b.data() + b.size() - 8, &fnv, 8);
+        writeBytes(dir.path() / "p.lsf", b);
+        return readError(dir.path() / "p.lsf");
+    };
+    EXPECT_NE(patched(20, 9).find("SH order 9 is out of range"), std::string::npos);
+    EXPECT_NE(patched(24, 2).find("channel count must be 1 or 3"), std::string::npos);
+    EXPECT_NE(patched(96, 3).find("unknown sample scheme 3"), std::string::npos);
+    EXPECT_NE(patched(100, 4).find("region axis 4 is out of range"), std::string::npos);
+    float negative = -1.0f;
+    uint32_t bits;
+    std::memcpy(&bits, &negative, 4);
+    EXPECT_NE(patched(84, bits).find("negative or non-finite parameter"), std::string::npos);
+    // The first sample's width: after positions (3N floats) and radii (N).
+    EXPECT_NE(patched(104 + 4 * (3 * 2 + 2), 0).find("sample 0 has a non-positive width"), std::string::npos);
+    EXPECT_EQ(patched(20, 3), "no error");  // the unchanged value reads back: the patching itself is sound
 }
 
 TEST(SampleFile, RejectsInvalidBoundaryBalls) {

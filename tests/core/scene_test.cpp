@@ -109,5 +109,26 @@ TEST(Scene, FingerprintFollowsMeshAndMedium) {
     EXPECT_NE(before, with("1"));
 }
 
+// The fingerprint covers the contents of blocker and grid files too: a sample
+// file made before either changed no longer belongs to the object.
+TEST(Scene, FingerprintFollowsBlockerAndGridContents) {
+    test::ScratchDir dir;
+    dir.write("m.obj", "v 0 0 0\n");
+    dir.write("b.obj", "v 0 0 0\n");
+    dir.write("g.raw", std::string(32, '\1'));
+    const std::string scene = R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
+      "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": 1, "albedo": 0.5, "blockers": ["b.obj"],
+      "density": {"type": "grid", "file": "g.raw", "dims": [2, 2, 2], "bounds": [[0, 0, 0], [1, 1, 1]]}},
+      "samples": "s.lsf"}]})";
+    auto fingerprint = [&] { return parseSceneText(scene, dir.path() / "scene.json").objects[0].fingerprint; };
+    const uint64_t before = fingerprint();
+    EXPECT_EQ(fingerprint(), before);
+    dir.write("b.obj", "v 0 0 2\n");
+    const uint64_t blockerChanged = fingerprint();
+    EXPECT_NE(blockerChanged, before);
+    dir.write("g.raw", std::string(32, '\2'));
+    EXPECT_NE(fingerprint(), blockerChanged);
+}
+
 }  // namespace
 }  // namespace lucent

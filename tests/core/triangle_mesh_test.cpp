@@ -89,15 +89,15 @@ TEST(TriangleMesh, RejectsBrokenMeshesWithOneLine) {
         // Three faces on one edge (two tetrahedra glued by an edge-sharing fin).
         {"fin.obj",
          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 2 5\n",
-         "not"},
-        // OpenMesh's OFF reader keeps state between files: after a good OFF file it
-        // reads this one as empty, otherwise as malformed. Either is a clear error.
-        {"garbage.off", "OFF\n3 1\nbroken", ""},
+         "mesh is not manifold"},
+        // Its header claims more than its bytes can hold: refused before OpenMesh reads it.
+        {"garbage.off", "OFF\n3 1\nbroken", "OFF header claims 3 vertices and 1 faces"},
     };
     for (const Case& c : cases) {
         const std::string message = loadError(dir, c.name, c.contents);
         EXPECT_NE(message.find(c.name), std::string::npos) << message;
         EXPECT_NE(message.find(c.message), std::string::npos) << c.name << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;  // one line
     }
     std::vector<std::string> warnings;
     EXPECT_THROW(loadClosedMesh(dir.path() / "missing.obj", warnings), Error);
