@@ -168,7 +168,7 @@ std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, cons
         openvdb::io::File vdb(name);
         vdb.open();
         vdb.readGrid(gridName);
-    }, 30.0 + double(fileSize) / 2e6);
+    }, 5.0 + double(fileSize) / 2e6);
     if (!death.empty()) throw Error(name, "corrupt OpenVDB file (the OpenVDB reader died on it: " + death + ")");
     openvdb::FloatGrid::Ptr grid;
     try {

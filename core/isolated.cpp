@@ -1,5 +1,6 @@
 #include "core/isolated.h"
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,6 +20,13 @@ std::string deathInChild(const std::function<void()>& work, double timeoutSecond
     const pid_t pid = ::fork();
     if (pid < 0) throw Error(std::string("cannot fork to read a file safely: ") + std::strerror(errno));
     if (pid == 0) {
+        // What the library prints as it dies (an assertion, a sanitizer report) is
+        // not the user's business: the parent says in one line what happened.
+        const int devNull = ::open("/dev/null", O_WRONLY);
+        if (devNull >= 0) {
+            ::dup2(devNull, STDOUT_FILENO);
+            ::dup2(devNull, STDERR_FILENO);
+        }
         try {
             work();
         } catch (...) {
