@@ -69,6 +69,7 @@ Command addRenderCommand(CLI::App& app) {
         settings.samplesPerPixel = o->samples;
         settings.maxScatter = o->maxScatter;
         settings.seed = std::stoull(o->seed);
+        printWarnings(method.entry->create()->limitations(loaded));  // before the work, not after
         std::string servedBy;
         const Image image = renderWith(*method.entry, loaded, settings, &servedBy);
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);

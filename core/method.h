@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/loaded_scene.h"
@@ -34,6 +35,9 @@ public:
     virtual Image render(const LoadedScene& scene, const MethodSettings& settings) = 0;
     // What served the last render, for messages (an OpenGL backend, a device); may be empty.
     virtual std::string servedBy() const { return {}; }
+    // What this method is known to get wrong about this scene, one line each
+    // (shown as warnings): the cases where it misses its accuracy goal.
+    virtual std::vector<std::string> limitations(const LoadedScene&) const { return {}; }
 };
 
 // One row of the method table.

@@ -32,8 +32,7 @@ struct ResolvedMethod {
 };
 ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene);
 
-// Loads what the method needs (sample files only for those that draw from them),
-// creates it and renders. servedBy receives what served the frame, if asked.
+// Creates the method and renders. servedBy receives what served the frame, if asked.
 Image renderWith(const MethodEntry& entry, const LoadedScene& scene, const MethodSettings& settings,
                  std::string* servedBy = nullptr);
 

@@ -9,6 +9,9 @@ class SsMethod final : public Method {
 public:
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"
+    // Lights inside an object or within a sample spacing of its boundary, and
+    // Gaussians far wider or narrower than their spacing (docs/accuracy.md, Extremes).
+    std::vector<std::string> limitations(const LoadedScene& scene) const override;
 
 private:
     std::string backend_;

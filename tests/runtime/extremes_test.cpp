@@ -12,6 +12,8 @@
 #include "core/image_compare.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
+#include "core/loaded_scene.h"
+#include "runtime/ss_method.h"
 #include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
@@ -30,6 +32,7 @@ struct Case {
 // the same), 48x48 pixels.
 struct Render {
     Image ss, reference;
+    SceneDesc scene;  // with its sample file written
 };
 
 Render render(const Case& c, const test::ScratchDir& dir) {
@@ -80,6 +83,7 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     reference.surface = false;
     reference.tolerance = 1e-3;
     r.reference = ReferenceRenderer(scene, objects).render(reference);
+    r.scene = scene;
     return r;
 }
 
@@ -175,30 +179,38 @@ TEST(Extremes, TinyAndHugeObjectsGiveTheSameImage) {
     }
 }
 
-TEST(Extremes, GaussiansFarWiderAndNarrowerThanAPixel) {
+// Outside the measured range of widths, and with a light inside the object or at
+// its surface, ss misses its goal (measured 0.88 and 0.12 of the light at width
+// factors 0.05 and 20, 0.34 and 1.23 with the light at the centre and at the
+// surface). No bound here accepts that: the images must stay finite and
+// non-negative, and --method ss must say, before rendering, that it is off.
+bool ssWarns(const Case& c, const std::string& words) {
+    test::ScratchDir dir;
+    const Render r = render(c, dir);
+    expectFiniteAndNonNegative(r.ss, "ss");
+    expectFiniteAndNonNegative(r.reference, "reference");
+    const LoadedScene loaded = loadScene(r.scene, true);
+    for (const std::string& line : SsMethod().limitations(loaded))
+        if (line.find(words) != std::string::npos) return true;
+    return false;
+}
+
+TEST(Extremes, GaussiansFarWiderAndNarrowerThanTheirSpacingAreWarnedAbout) {
     for (double factor : {0.05, 20.0}) {
         Case c = sphere(2.0);
         c.widthFactor = factor;
-        // Narrow Gaussians miss most pixel rays (measured 0.28 of the light at
-        // FWHM 0.05 r); wide ones, as wide as the object, blur, and the light
-        // extrapolated along the boundary ball's steep gradient across them falls
-        // short (measured 0.13 at FWHM 20 r): finite, and within a factor 10.
-        const double ratio = checkedRatio(c);
-        EXPECT_GT(ratio, 1.0 / 10.0) << factor;
-        EXPECT_LT(ratio, 5.0) << factor;
+        EXPECT_TRUE(ssWarns(c, "far outside the measured 1 to 2.5")) << factor;
     }
+    EXPECT_FALSE(ssWarns(sphere(2.0), "far outside"));  // the default width: no warning
 }
 
-TEST(Extremes, LightInsideAndOnTheSurface) {
+TEST(Extremes, LightInsideOrAtTheSurfaceIsWarnedAbout) {
     for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0, 0.999, 0)}) {
         Case c = sphere(2.0);
         c.lights = {pointLight(p, 1.0)};
-        // The 1/r^2 peak is averaged over a Gaussian, which loses much of it
-        // (measured 0.36 with the light at the centre): finite, within a factor 4.
-        const double ratio = checkedRatio(c);
-        EXPECT_GT(ratio, 0.25);
-        EXPECT_LT(ratio, 4.0);
+        EXPECT_TRUE(ssWarns(c, "light 0 lies")) << p.y;
     }
+    EXPECT_FALSE(ssWarns(sphere(2.0), "light 0 lies"));  // a light outside: no warning
 }
 
 TEST(Extremes, CameraInsideTheObject) {
