@@ -1,5 +1,7 @@
 #include "runtime/ss_method.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/sample_set.h"
 #include "runtime/offscreen_context.h"
@@ -25,6 +27,28 @@ std::vector<std::string> SsMethod::limitations(const LoadedScene& scene) const {
                 out.push_back("light " + std::to_string(j) + " lies " + (o.contains(l.position) ? "inside" : "at the surface of") +
                               " object '" + name + "': --method ss averages its 1/r^2 peak over the Gaussians there "
                               "(0.34 to 1.23 of the light measured; --method reference is exact)");
+        }
+        // The samples hold each object's own attenuation only: light that crosses
+        // another object on its way is not dimmed by it (measured on two spheres,
+        // one in the other's light: 24% relative RMSE against 5% without).
+        const Bounds3 mine = o.mesh().bounds();
+        for (size_t k = 0; k < scene.objects.size(); ++k) {
+            if (k == i) continue;
+            const Bounds3 other = scene.objects[k].mesh().bounds();
+            const double reach = 0.5 * other.diagonal();  // the other's bounding sphere
+            for (size_t j = 0; j < scene.desc.lights.size(); ++j) {
+                const Light& l = scene.desc.lights[j];
+                // The segment from the light towards this object's centre (a directional light: from far away).
+                const Vec3 to = mine.center();
+                const Vec3 from = l.type == Light::Type::Point ? l.position : to - 1e6 * reach * l.direction;
+                const Vec3 d = to - from;
+                const double t = std::clamp(glm::dot(other.center() - from, d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
+                if (glm::length(from + t * d - other.center()) < reach && t > 0.0 && t < 1.0)
+                    out.push_back("object '" + scene.objects[k].desc().name + "' may lie between light " +
+                                  std::to_string(j) + " and object '" + name +
+                                  "': --method ss does not dim one object's light by another (24% relative RMSE "
+                                  "measured on two spheres; --method reference is exact)");
+            }
         }
         if (!scene.hasSamples()) continue;
         const SampleParameters& p = scene.samples[i].parameters;
