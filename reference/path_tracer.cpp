@@ -9,6 +9,7 @@
 
 #include "core/camera_rays.h"
 #include "core/progress.h"
+#include "reference/light_arrival.h"
 #include "reference/surface_reflection.h"
 
 namespace lucent {
@@ -96,24 +97,10 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
 Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
     Rgb sum(0.0);
     for (const Light& light : scene_.lights) {
-        Vec3 toLight;
-        double distance;
-        Rgb irradiance;
-        if (light.type == Light::Type::Point) {
-            toLight = light.position - x;
-            distance = glm::length(toLight);
-            if (distance == 0.0) continue;
-            toLight /= distance;
-            irradiance = light.power / (distance * distance);
-        } else {
-            toLight = -light.direction;
-            distance = kInfinity;
-            irradiance = light.power;
-        }
-        Rgb transmitted(1.0);
-        for (const VolumeObject& o : objects_)
-            transmitted *= transmittance(o.desc().medium.sigmaT, o.densityPath(x, toLight, distance));
-        sum += henyeyGreenstein(glm::dot(toLight, dir), object.desc().medium.g) * irradiance * transmitted;
+        const std::optional<LightArrival> a = lightArrivingAt(light, x);
+        if (!a) continue;
+        sum += henyeyGreenstein(glm::dot(a->toLight, dir), object.desc().medium.g) * a->irradiance *
+               transmittanceToLight(objects_, x, *a);
     }
     return sum;
 }

@@ -11,6 +11,7 @@
 
 #include "core/camera_rays.h"
 #include "core/progress.h"
+#include "reference/light_arrival.h"
 #include "reference/surface_reflection.h"
 
 namespace lucent {
@@ -93,29 +94,12 @@ Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, co
     if (magnitude(sigmaS) == 0.0) return Rgb(0.0);
     Rgb sum(0.0);
     for (const Light& light : scene_.lights) {
-        Vec3 toLight;
-        double distance;
-        Rgb irradiance;
-        if (light.type == Light::Type::Point) {
-            toLight = light.position - x;
-            distance = glm::length(toLight);
-            if (distance == 0.0) continue;  // a light exactly at x: no direction to come from
-            toLight /= distance;
-            irradiance = light.power / (distance * distance);
-        } else {
-            toLight = -light.direction;
-            distance = kInfinity;
-            irradiance = light.power;
-        }
-        if (magnitude(irradiance) == 0.0) continue;
-        // Each object attenuates with its own sigma_t; a scene of one object is the common case.
-        Rgb transmitted(1.0);
-        for (const auto& o : objects_)
-            transmitted *= transmittance(o.desc().medium.sigmaT, o.densityPath(x, toLight, distance));
+        const std::optional<LightArrival> a = lightArrivingAt(light, x);
+        if (!a) continue;
         // Phase function between the light's propagation direction (-toLight) and the
         // view's propagation direction (-viewDir).
-        const double phase = henyeyGreenstein(glm::dot(toLight, viewDir), object.desc().medium.g);
-        sum += phase * irradiance * transmitted;
+        const double phase = henyeyGreenstein(glm::dot(a->toLight, viewDir), object.desc().medium.g);
+        sum += phase * a->irradiance * transmittanceToLight(objects_, x, *a);
     }
     return sigmaS * sum;
 }

@@ -1,0 +1,34 @@
+#include "reference/light_arrival.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lucent {
+
+std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x) {
+    LightArrival a;
+    if (light.type == Light::Type::Point) {
+        a.toLight = light.position - x;
+        a.distance = glm::length(a.toLight);
+        if (a.distance == 0.0) return std::nullopt;
+        a.toLight /= a.distance;
+        a.irradiance = light.power / (a.distance * a.distance);
+    } else {
+        a.toLight = -light.direction;
+        a.distance = kInfinity;
+        a.irradiance = light.power;
+    }
+    if (std::max({std::abs(a.irradiance.r), std::abs(a.irradiance.g), std::abs(a.irradiance.b)}) == 0.0)
+        return std::nullopt;
+    return a;
+}
+
+Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x, const LightArrival& arrival) {
+    // Each object attenuates with its own sigma_t; a scene of one object is the common case.
+    Rgb transmitted(1.0);
+    for (const VolumeObject& o : objects)
+        transmitted *= transmittance(o.desc().medium.sigmaT, o.densityPath(x, arrival.toLight, arrival.distance));
+    return transmitted;
+}
+
+}  // namespace lucent

@@ -1,0 +1,26 @@
+#pragma once
+// Light reaching a point of the media, as both ground truths gather it: the
+// direction to the light, its irradiance there (1/d^2 for point lights), and
+// the transmittance along the way through every object (zero through a blocker).
+#include <optional>
+#include <vector>
+
+#include "core/math.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+
+namespace lucent {
+
+struct LightArrival {
+    Vec3 toLight;     // unit, from x towards the light
+    double distance;  // to a point light; infinity for a directional one
+    Rgb irradiance;   // before attenuation
+};
+
+// None for a point light exactly at x (no direction to come from) or a dark light.
+std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x);
+
+// exp(-sum over objects of sigma_t times the density path) per channel.
+Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x, const LightArrival& arrival);
+
+}  // namespace lucent
