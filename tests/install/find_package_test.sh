@@ -23,7 +23,11 @@ for header in "$prefix"/include/lucent/runtime/*.h; do
 done
 test -f "$prefix/share/lucent/plot-accuracy.py" || { echo "FAIL: plot-accuracy.py not installed"; exit 1; }
 
-cmake -S "$source_dir/examples" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release > /dev/null
+# The host is built as Lucent was (a sanitized Lucent needs a sanitized host to load it).
+cxx_flags=$(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build_dir/CMakeCache.txt")
+link_flags=$(sed -n 's/^CMAKE_EXE_LINKER_FLAGS:STRING=//p' "$build_dir/CMakeCache.txt")
+cmake -S "$source_dir/examples" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_FLAGS="$cxx_flags" -DCMAKE_EXE_LINKER_FLAGS="$link_flags" > /dev/null
 cmake --build "$scratch/build" -j2 > /dev/null
 test -x "$scratch/build/lucent-example-host"
 
@@ -33,7 +37,8 @@ cat > "$scratch/scene.json" <<JSON
  "objects": [{"mesh": "$source_dir/models/sphere.obj", "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}]}
 JSON
 "$prefix/bin/lucent" preprocess "$scratch/scene.json" --quality draft --samples 1000 2> /dev/null
-"$scratch/build/lucent-example-host" "$scratch/scene.json" "$scratch/out.pfm" --no-occluder 2> /dev/null
+"$scratch/build/lucent-example-host" "$scratch/scene.json" "$scratch/out.pfm" --no-occluder 2> "$scratch/host.log" ||
+  { echo "FAIL: the example host did not run:"; cat "$scratch/host.log"; exit 1; }
 # The host's image: a 32x32 PFM whose brightest pixel is the sphere's light (not 0).
 python3 - "$scratch/out.pfm" <<'PY'
 import struct, sys
