@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include <regex>
+
+#include <fstream>
+
 #include "core/error.h"
 #include "tests/support/test_support.h"
 
@@ -128,6 +134,29 @@ TEST(Scene, FingerprintFollowsBlockerAndGridContents) {
     EXPECT_NE(blockerChanged, before);
     dir.write("g.raw", std::string(32, '\2'));
     EXPECT_NE(fingerprint(), blockerChanged);
+}
+
+// Every key the parser reads (each child("...") and has("...") in core/scene.cpp)
+// is named in docs/scene-file.md: a key added to the parser without its entry in
+// the reference fails here.
+TEST(Scene, EveryKeyTheParserReadsIsInTheReference) {
+    auto text = [](const std::filesystem::path& file) {
+        std::ifstream in(file);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    };
+    const std::string parser = text(test::sourceDir() / "core" / "scene.cpp");
+    const std::string reference = text(test::sourceDir() / "docs" / "scene-file.md");
+    ASSERT_FALSE(parser.empty());
+    ASSERT_FALSE(reference.empty());
+    const std::regex read(R"re((child|has)\("([a-z_]+)"\))re");
+    size_t keys = 0;
+    for (std::sregex_iterator it(parser.begin(), parser.end(), read), end; it != end; ++it, ++keys) {
+        const std::string key = (*it)[2];
+        EXPECT_NE(reference.find("`" + key + "`"), std::string::npos) << "'" << key << "' is not in docs/scene-file.md";
+    }
+    EXPECT_GT(keys, 30u);
 }
 
 }  // namespace
