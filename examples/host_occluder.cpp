@@ -3,7 +3,10 @@
 // front of the sphere: Lucent reads the host's depth texture, so the light the
 // sphere scatters behind the box stays hidden.
 //
-//   lucent-example-host SCENE.json OUT.pfm [--no-occluder]
+//   lucent-example-host SCENE.json OUT.pfm [--no-occluder] [--depth32f]
+//
+// --depth32f gives the host a GL_DEPTH_COMPONENT32F depth texture instead of
+// GL_DEPTH24_STENCIL8: Lucent reads either.
 //
 // SCENE.json is a Lucent scene whose first object has been preprocessed.
 #include <glm/gtc/type_ptr.hpp>
@@ -53,10 +56,18 @@ std::vector<glm::vec3> box(glm::vec3 lo, glm::vec3 hi) {
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder] [--depth32f]\n", argv[0]);
         return 2;
     }
-    const bool occluder = !(argc > 3 && std::strcmp(argv[3], "--no-occluder") == 0);
+    bool occluder = true, depth32f = false;
+    for (int a = 3; a < argc; ++a) {
+        if (std::strcmp(argv[a], "--no-occluder") == 0) occluder = false;
+        else if (std::strcmp(argv[a], "--depth32f") == 0) depth32f = true;
+        else {
+            std::fprintf(stderr, "lucent-example-host: unknown option %s\n", argv[a]);
+            return 2;
+        }
+    }
     try {
         const lucent::SceneDesc scene = lucent::parseScene(argv[1]);
         std::vector<std::string> warnings;
@@ -75,10 +86,10 @@ int main(int argc, char** argv) {
         glCreateTextures(GL_TEXTURE_2D, 1, &colour);
         glTextureStorage2D(colour, 1, GL_RGBA32F, w, h);
         glCreateTextures(GL_TEXTURE_2D, 1, &depth);
-        glTextureStorage2D(depth, 1, GL_DEPTH24_STENCIL8, w, h);
+        glTextureStorage2D(depth, 1, depth32f ? GL_DEPTH_COMPONENT32F : GL_DEPTH24_STENCIL8, w, h);
         glCreateFramebuffers(1, &framebuffer);
         glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
-        glNamedFramebufferTexture(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
+        glNamedFramebufferTexture(framebuffer, depth32f ? GL_DEPTH_ATTACHMENT : GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, w, h);
         glClearColor(0, 0, 0, 0);

@@ -10,7 +10,8 @@
 namespace lucent {
 namespace {
 
-TEST(HostProgram, OpaqueOccluderHidesTheScatteringBehindIt) {
+// depthFlag: "" for the host's GL_DEPTH24_STENCIL8, "--depth32f" for GL_DEPTH_COMPONENT32F.
+void expectOccluderHidesTheScattering(const std::string& depthFlag) {
     test::ScratchDir dir;
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0.6, 5], "target": [0, 0, 0], "fov_y": 35, "width": 96, "height": 96},
@@ -20,7 +21,7 @@ TEST(HostProgram, OpaqueOccluderHidesTheScatteringBehindIt) {
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto run = [&](const std::string& out, const std::string& flag) {
         const std::string command = std::string(LUCENT_EXAMPLE_HOST) + " " + scene.string() + " " +
-                                    (dir.path() / out).string() + " " + flag + " 2> /dev/null";
+                                    (dir.path() / out).string() + " " + flag + " " + depthFlag + " 2> /dev/null";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
     };
     run("occluded.pfm", "");
@@ -40,6 +41,11 @@ TEST(HostProgram, OpaqueOccluderHidesTheScatteringBehindIt) {
     EXPECT_GT(hidden, 500u);     // the box really stands in front of lit parts of the sphere
     EXPECT_GT(unchanged, 2000u); // and leaves the rest of the frame alone
 }
+
+TEST(HostProgram, OpaqueOccluderHidesTheScatteringBehindIt) { expectOccluderHidesTheScattering(""); }
+
+// A host whose depth texture is GL_DEPTH_COMPONENT32F, not DEPTH24_STENCIL8.
+TEST(HostProgram, AFloatDepthBufferWorksToo) { expectOccluderHidesTheScattering("--depth32f"); }
 
 }  // namespace
 }  // namespace lucent
