@@ -15,7 +15,6 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
-#include "core/isolated.h"
 #include "core/limits.h"
 #include "core/mesh_file_check.h"
 
@@ -144,15 +143,7 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
         throw Error(file, "unsupported mesh format '" + extension + "' (use .obj, .off, .ply or .stl)");
     checkMeshFileClaims(path, extension, size);
     if (extension == ".stl") rejectNonFiniteBinaryStl(path);
-    // OpenMesh's readers crash on some malformed files (fuzz/mesh_fuzzer.cpp): read it in a child first,
-    // with OpenMesh's error stream already taken over so that the child prints nothing.
     OpenMeshErrorCapture& capture = OpenMeshErrorCapture::instance();
-    const std::string death = deathInChild([&] {
-        OmMesh probe;
-        OpenMesh::IO::Options probeOptions;
-        OpenMesh::IO::read_mesh(probe, file, probeOptions);
-    }, 5.0 + double(size) / 2e6);  // OpenMesh reads well over 2 MB/s
-    if (!death.empty()) throw Error(file, "malformed mesh file (the OpenMesh reader died on it: " + death + ")");
     OmMesh om;
     capture.clear();
     OpenMesh::IO::Options options;
