@@ -22,9 +22,10 @@ std::vector<std::string> SsMethod::limitations(const LoadedScene& scene) const {
         for (size_t j = 0; j < scene.desc.lights.size(); ++j) {
             const Light& l = scene.desc.lights[j];
             if (l.type != Light::Type::Point) continue;
+            const bool inside = o.contains(l.position);
             const double depth = glm::length(o.boundary().closestPoint(l.position) - l.position);
-            if (o.contains(l.position) || depth < spacing)
-                out.push_back("light " + std::to_string(j) + " lies " + (o.contains(l.position) ? "inside" : "at the surface of") +
+            if (inside || depth < spacing)
+                out.push_back("light " + std::to_string(j) + " lies " + (inside ? "inside" : "at the surface of") +
                               " object '" + name + "': --method ss averages its 1/r^2 peak over the Gaussians there "
                               "(0.34 to 1.23 of the light measured; --method reference is exact)");
         }
