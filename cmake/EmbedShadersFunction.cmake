@@ -3,7 +3,7 @@
 # DIR (cmake/EmbedShaders.cmake), regenerated when any of them changes.
 function(lucent_embed_shaders dir function header output)
   file(GLOB shader_files CONFIGURE_DEPENDS ${dir}/*.vert ${dir}/*.geom ${dir}/*.frag ${dir}/*.comp ${dir}/*.glsl
-       ${dir}/gpu_layout.h)
+       ${dir}/*.cl ${dir}/gpu_layout.h ${dir}/cl_layout.h)
   add_custom_command(
     OUTPUT ${output}
     COMMAND ${CMAKE_COMMAND} -DSHADER_DIR=${dir} -DFUNCTION=${function} -DHEADER=${header} -DOUTPUT=${output}

@@ -1,0 +1,25 @@
+#pragma once
+// What a volumetric multiple-scattering method hands the runtime for one object
+// (hybrid/ makes it, runtime/ draws it, neither sees the other): a box of cubic
+// voxels holding, per colour channel, the light the medium scatters towards any
+// direction per unit length of a view ray, and the extinction that dims it on
+// the way to the eye. The view pass integrates
+//   L = int exp(-int sigma_t) source dt      (thesis 4.6.2)
+// along each pixel's ray inside the object.
+#include <array>
+#include <vector>
+
+#include "core/math.h"
+
+namespace lucent {
+
+struct ScatteringGrid {
+    Bounds3 bounds;                  // the box the voxels tile, world units
+    std::array<int, 3> dims{0, 0, 0};
+    std::vector<float> source;       // rgb per voxel, x fastest: sigma_s phi / (4 pi), W / (m^3 sr) in scene units
+    std::vector<float> extinction;   // rgb per voxel: sigma_t weighted by the voxel's occupancy
+
+    size_t voxelCount() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+};
+
+}  // namespace lucent

@@ -1,0 +1,50 @@
+#pragma once
+// The OpenCL device the hybrid runs on, with clear errors for what can go wrong:
+// no platform or device, a kernel that does not build (with its build log), a
+// grid that does not fit. Private to hybrid/: nothing above it sees OpenCL.
+#define CL_HPP_TARGET_OPENCL_VERSION 120
+#define CL_HPP_MINIMUM_OPENCL_VERSION 120
+#define CL_HPP_ENABLE_EXCEPTIONS
+#include <CL/opencl.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lucent {
+// The text of an embedded kernel file of hybrid/internal (generated), or nullptr.
+const char* hybridKernel(std::string_view file);
+}  // namespace lucent
+
+namespace lucent::hybrid {
+
+class ClDevice {
+public:
+    // The first GPU of any platform, else the first device (PoCL's CPU device here).
+    // Throws Error when there is none.
+    ClDevice();
+
+    // Why no device can be had, or empty when one can.
+    static std::string unavailableReason();
+
+    // Builds the kernel files (embedded, or given as text by tests) after the
+    // shared layout (cl_layout.h). Throws Error with the build log on failure.
+    cl::Program build(const std::vector<std::string>& files) const;
+    cl::Program buildSource(const std::string& source, const std::string& name) const;
+
+    // Throws Error when `bytes` in all, or `largestBuffer` in one buffer, exceed
+    // what the device can hold; what names the work ("a 128^3 grid").
+    void checkMemory(size_t bytes, size_t largestBuffer, const std::string& what) const;
+
+    std::string name() const;
+
+    cl::Context context;
+    cl::Device device;
+    // Two in-order queues so that marching and diffusion can overlap (thesis fig. 4.1).
+    cl::CommandQueue marchQueue, latticeQueue;
+};
+
+// "CL_OUT_OF_RESOURCES (-5)" and the like.
+std::string clErrorText(cl_int code);
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,86 @@
+#include "hybrid/photon_rays.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/rng.h"
+
+namespace lucent::hybrid {
+
+namespace {
+
+// An orthonormal basis around w.
+void basis(const Vec3& w, Vec3& u, Vec3& v) {
+    u = glm::normalize(std::abs(w.x) > 0.5 ? glm::cross(w, Vec3(0, 1, 0)) : glm::cross(w, Vec3(1, 0, 0)));
+    v = glm::cross(w, u);
+}
+
+// Where origin + t dir enters the box (t >= 0), or false when it misses it.
+bool enterBox(const Bounds3& box, const Vec3& origin, const Vec3& dir, double& t) {
+    double t0 = 0.0, t1 = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (origin[a] < box.min[a] || origin[a] > box.max[a]) return false;
+            continue;
+        }
+        double lo = (box.min[a] - origin[a]) / dir[a], hi = (box.max[a] - origin[a]) / dir[a];
+        if (lo > hi) std::swap(lo, hi);
+        t0 = std::max(t0, lo);
+        t1 = std::min(t1, hi);
+    }
+    t = t0;
+    return t0 < t1;
+}
+
+}  // namespace
+
+RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int count, uint64_t seed) {
+    RayMap map;
+    const Bounds3 box = grid.bounds();
+    const Vec3 centre = box.center();
+    const double radius = 0.5 * box.diagonal();
+    const int side = std::max(1, int(std::lround(std::sqrt(double(count)))));
+    Rng rng(seed, 0x7261796d6170ull);  // "raymap"
+    for (const Light& light : lights) {
+        Vec3 w = light.type == Light::Type::Point ? centre - light.position : light.direction;
+        const double distance = glm::length(w);
+        if (light.type == Light::Type::Point && distance <= 0.0) w = Vec3(0, 0, 1);
+        w = glm::normalize(w);
+        Vec3 u, v;
+        basis(w, u, v);
+        // A point light inside the bounding sphere sends rays everywhere.
+        const double cosMax = light.type == Light::Type::Point && distance > radius
+                                  ? std::sqrt(1.0 - (radius / distance) * (radius / distance))
+                                  : -1.0;
+        const double share = light.type == Light::Type::Point ? 2.0 * kPi * (1.0 - cosMax) / (side * side)
+                                                              : 4.0 * radius * radius / (side * side);
+        const Rgb power = light.power * share;
+        for (int i = 0; i < side; ++i)
+            for (int j = 0; j < side; ++j) {
+                const double a = (i + rng.uniform()) / side, b = (j + rng.uniform()) / side;
+                Vec3 origin, dir;
+                if (light.type == Light::Type::Point) {
+                    const double cosT = 1.0 - a * (1.0 - cosMax), sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
+                    const double phi = 2.0 * kPi * b;
+                    origin = light.position;
+                    dir = cosT * w + sinT * (std::cos(phi) * u + std::sin(phi) * v);
+                } else {
+                    origin = centre - 2.0 * radius * w + radius * ((2.0 * a - 1.0) * u + (2.0 * b - 1.0) * v);
+                    dir = w;
+                }
+                double t;
+                if (!enterBox(box, origin, dir, t)) continue;
+                // Just inside the box, so the first step lands in a voxel of the grid.
+                const Vec3 start = origin + (t + 1e-4 * grid.voxel) * dir;
+                clshared::PhotonRay ray{};
+                ray.position = {{float(start.x), float(start.y), float(start.z), 1.0f}};
+                ray.velocity = {{float(dir.x), float(dir.y), float(dir.z), 0.0f}};  // n = 1 outside
+                ray.power = {{float(power.r), float(power.g), float(power.b), 0.0f}};
+                map.rays.push_back(ray);
+                map.emitted += power;
+            }
+    }
+    return map;
+}
+
+}  // namespace lucent::hybrid

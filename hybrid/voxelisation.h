@@ -1,0 +1,50 @@
+#pragma once
+// Init pass of the hybrid (thesis 4.3): an object as a grid of cubic voxels.
+// Each voxel holds sigma_t premultiplied by the share of it the medium occupies
+// (from 2x2x2 = 8 sub-samples per voxel), that share, and the refractive index
+// with its gradient, smoothed so that rays bend smoothly across the boundary.
+#include <array>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/math.h"
+#include "core/volume_object.h"
+
+namespace lucent::hybrid {
+
+// The lattice works on blocks of kBlock^3 voxels (thesis 4.5): every dimension is a multiple.
+inline constexpr int kBlock = 4;
+
+struct GridShape {
+    Vec3 origin{0.0};  // corner of voxel (0, 0, 0)
+    double voxel = 1;  // edge length
+    std::array<int, 3> dims{0, 0, 0};
+
+    size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+    Bounds3 bounds() const {
+        return {origin, origin + voxel * Vec3(dims[0], dims[1], dims[2])};
+    }
+};
+
+// Cubic voxels, `resolution` of them along the longest side of the object's box
+// with one empty voxel on each side, every dimension rounded up to kBlock.
+GridShape gridShapeFor(const Bounds3& objectBounds, int resolution);
+
+// What voxels hold besides medium: empty ones let light leave, opaque ones (a
+// blocker fills most of the voxel) absorb it.
+inline constexpr float kOpaque = -1.0f;
+
+struct Voxelisation {
+    GridShape shape;
+    std::vector<glm::vec4> material;    // rgb: sigma_t * occupancy; a: occupancy in [0, 1], or kOpaque
+    std::vector<glm::vec4> refraction;  // x: index n; yzw: grad n per world unit
+    bool refracting = false;            // n differs from 1 somewhere
+};
+
+Voxelisation voxelise(const VolumeObject& object, int resolution);
+
+// A Gaussian blur of standard deviation sigmaVoxels along each axis (separable), edges clamped.
+void gaussianBlur(std::vector<float>& values, const std::array<int, 3>& dims, double sigmaVoxels);
+
+}  // namespace lucent::hybrid
