@@ -17,7 +17,7 @@ namespace lucent {
 Command addRenderCommand(CLI::App& app) {
     struct Options {
         std::string scene, output, method, backend;
-        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20;
+        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64;
         std::string seed = "1";
         bool noSurface = false;
         double tolerance = 1e-3;
@@ -38,6 +38,8 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
+    sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl (default 64)")
+        ->check(CLI::Range(8, 1024));
     sub->add_option("--max-scatter", o->maxScatter,
                     "Collisions per path of --method path (1: single scattering; default unlimited)")
         ->check(CLI::Range(1, 1 << 20));
@@ -68,6 +70,7 @@ Command addRenderCommand(CLI::App& app) {
         settings.backend = o->backend;
         settings.samplesPerPixel = o->samples;
         settings.maxScatter = o->maxScatter;
+        settings.gridResolution = o->grid;
         settings.seed = std::stoull(o->seed);
         printWarnings(method.entry->create()->limitations(loaded));  // before the work, not after
         std::string servedBy;

@@ -25,6 +25,7 @@ struct MethodSettings {
     int samplesPerPixel = 64;      // Monte Carlo methods: paths per pixel
     int maxScatter = 1 << 20;      // Monte Carlo methods: collisions per path (1: single scattering)
     uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
+    int gridResolution = 64;       // grid methods: voxels along each object's longest side
 };
 
 class Method {

@@ -6,6 +6,10 @@
 #include "reference/path_method.h"
 #include "reference/reference_method.h"
 #include "runtime/ss_method.h"
+#ifdef LUCENT_HAVE_OPENCL
+#include "hybrid/multiple_scattering.h"
+#include "methods/lbl_method.h"
+#endif
 
 namespace lucent {
 
@@ -17,6 +21,13 @@ const std::vector<MethodEntry>& methodTable() {
          [] { return std::string(); }, [] { return std::make_unique<ReferenceMethod>(); }},
         {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",
          false, false, [] { return std::string(); }, [] { return std::make_unique<PathMethod>(); }},
+#ifdef LUCENT_HAVE_OPENCL
+        {"lbl",
+         "single scattering plus multiple scattering by photon marching and Lattice-Boltzmann lighting on OpenCL "
+         "(thesis ch. 4)",
+         true, false, [] { return hybrid::MultipleScattering::unavailableReason(); },
+         [] { return std::make_unique<LblMethod>(); }},
+#endif
     };
     return table;
 }

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "runtime/internal/frame_targets.h"
+#include "runtime/internal/grid_pass.h"
 #include "runtime/internal/gpu_layout.h"
 #include "runtime/internal/render_pass.h"
 #include "runtime/internal/sample_pass.h"
@@ -24,12 +25,16 @@ struct ScatteringRenderer::Impl {
     std::vector<GpuObject> objects;
     GpuLights lights;
     FrameTargets targets;
-    // In drawing order: the reflected surface, then the scattered light.
+    // In drawing order: the reflected surface, then single scattering, then multiple.
     std::vector<std::unique_ptr<RenderPass>> passes;
+    GridPass* grids = nullptr;
 
     explicit Impl(double cutoff) {
         passes.push_back(std::make_unique<SurfacePass>());
         passes.push_back(std::make_unique<SamplePass>(cutoff));
+        auto gridPass = std::make_unique<GridPass>();
+        grids = gridPass.get();
+        passes.push_back(std::move(gridPass));
     }
     ~Impl() {
         if (lights.buffer) glDeleteBuffers(1, &lights.buffer);
@@ -57,6 +62,9 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     o.opticallyThick = object.samples->parameters.scheme == SampleScheme::OpticallyThick;
     impl_->objects.push_back(std::move(o));
 }
+
+void ScatteringRenderer::addScatteringGrid(const ScatteringGrid& grid) { impl_->grids->add(grid); }
+void ScatteringRenderer::clearScatteringGrids() { impl_->grids->clear(); }
 
 size_t ScatteringRenderer::sampleCount() const {
     size_t n = 0;

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "core/sample_set.h"
+#include "core/scattering_grid.h"
 #include "core/scene.h"
 #include "core/triangle_mesh.h"
 #include "core/volume_object.h"
@@ -54,6 +55,11 @@ public:
 
     void addObject(const TranslucentObject& object);
     void setLights(const std::vector<Light>& lights);
+    // Light scattered twice or more, as a volumetric method solved it for the
+    // current lights (hybrid/: --method lbl); drawn after single scattering.
+    // Copied to the GPU at once. DrawOptions::extinctionScale does not apply to it.
+    void addScatteringGrid(const ScatteringGrid& grid);
+    void clearScatteringGrids();
     size_t sampleCount() const;
 
     // Draws into the framebuffer bound to GL_DRAW_FRAMEBUFFER (a float colour

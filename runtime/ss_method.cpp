@@ -63,14 +63,20 @@ std::vector<std::string> SsMethod::limitations(const LoadedScene& scene) const {
 }
 
 Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
-    if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "--method ss needs the objects' sample sets");
+    return renderSingleScattering(scene, settings, {}, backend_);
+}
+
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+                             const std::vector<ScatteringGrid>& grids, std::string& backend) {
+    if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "single scattering needs the objects' sample sets");
     const auto context = OffscreenContext::create(parseGlBackend(settings.backend));
-    backend_ = context->backendName();
+    backend = context->backendName();
     const ViewSetup view = viewSetupFor(scene.desc.camera, scene.bounds());
     OffscreenFrame frame(view.width, view.height);
     ScatteringRenderer renderer(settings.cutoff);
     for (size_t i = 0; i < scene.objects.size(); ++i)
         renderer.addObject(translucentObjectFor(scene.objects[i], scene.samples[i]));
+    for (const ScatteringGrid& g : grids) renderer.addScatteringGrid(g);
     renderer.setLights(scene.desc.lights);
     frame.bindAndClear();
     DrawOptions options;

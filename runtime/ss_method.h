@@ -2,6 +2,7 @@
 // --method ss: the scene's objects with their sample sets, drawn offscreen by the
 // ScatteringRenderer through EGL or OSMesa.
 #include "core/method.h"
+#include "core/scattering_grid.h"
 
 namespace lucent {
 
@@ -16,5 +17,10 @@ public:
 private:
     std::string backend_;
 };
+
+// The frame --method ss draws, plus grids of multiple scattering (--method lbl
+// adds its own); backend receives "egl" or "osmesa".
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+                             const std::vector<ScatteringGrid>& grids, std::string& backend);
 
 }  // namespace lucent

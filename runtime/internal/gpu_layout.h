@@ -26,6 +26,8 @@ LUCENT_GPU_CONSTANT(kBindingShadowViews, 4)   // mat4[]: view-projection of each
 // Texture units of the sample programs.
 LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the objects
 LUCENT_GPU_CONSTANT(kUnitShadowDistances, 1)  // blocker distance maps (runtime/internal/blocker_shadows.h)
+LUCENT_GPU_CONSTANT(kUnitGridSource, 2)       // a multiple-scattering grid's source (runtime/internal/grid_pass.h)
+LUCENT_GPU_CONSTANT(kUnitGridExtinction, 3)   // and its extinction
 
 struct Light {
     vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel

@@ -1,0 +1,47 @@
+#include "methods/lbl_method.h"
+
+#include <cstdio>
+
+#include "hybrid/multiple_scattering.h"
+#include "runtime/ss_method.h"
+
+namespace lucent {
+
+std::vector<std::string> LblMethod::limitations(const LoadedScene& scene) const {
+    std::vector<std::string> out = SsMethod().limitations(scene);
+    for (const VolumeObject& o : scene.objects) {
+        const MediumDesc& m = o.desc().medium;
+        if (m.ior != 1.0)
+            out.push_back("object '" + o.desc().name +
+                          "': ior differs from 1: the light's rays bend inside (eikonal marching) but single "
+                          "scattering and the view rays stay index-matched, and no light is reflected at the boundary");
+        if (m.g != 0.0)
+            out.push_back("object '" + o.desc().name +
+                          "': g differs from 0: the lattice scatters isotropically from the first scattering on");
+    }
+    return out;
+}
+
+Image LblMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
+    hybrid::MultipleScattering solver;
+    hybrid::HybridSettings hs;
+    hs.resolution = settings.gridResolution;
+    hs.seed = settings.seed;
+    std::vector<ScatteringGrid> grids;
+    for (const VolumeObject& object : scene.objects) {
+        hybrid::HybridStats stats;
+        grids.push_back(solver.solve(object, scene.desc.lights, hs, &stats));
+        const auto& d = grids.back().dims;
+        std::fprintf(stderr,
+                     "lucent: lbl: object '%s': %dx%dx%d voxels, %zu rays, %d lattice steps%s in %.2f s "
+                     "(voxelised in %.2f s)\n",
+                     object.desc().name.c_str(), d[0], d[1], d[2], stats.rays, stats.latticeSteps,
+                     stats.converged ? "" : " (not converged)", stats.solveSeconds, stats.voxeliseSeconds);
+    }
+    std::string backend;
+    Image image = renderSingleScattering(scene, settings, grids, backend);
+    servedBy_ = backend + " + OpenCL '" + solver.deviceName() + "'";
+    return image;
+}
+
+}  // namespace lucent

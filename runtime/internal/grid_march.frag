@@ -1,0 +1,50 @@
+#version 450 core
+// The view pass of the hybrid (thesis 4.6.2): along the pixel's ray, within
+// [t0, t1] (the nearest front face to the farthest back face, stopped by the
+// host's depth and the blockers) and the grid's box,
+//   L = int exp(-int sigma_t) source dt,
+// marched in steps of half a voxel with the transmittance of each step exact
+// for its midpoint's extinction. Outside the medium both grids hold 0, so air
+// between two parts of a concave object adds and dims nothing. Index-matched:
+// view rays go straight, as in every Lucent pass.
+#include "gpu_layout.h"
+
+uniform sampler2D raySegments;
+uniform sampler3D source;      // rgb: sigma_s phi / (4 pi)
+uniform sampler3D extinction;  // rgb: sigma_t
+uniform mat4 inverseViewProjection;
+uniform vec3 cameraPosition;
+uniform vec2 viewportSize;
+uniform vec3 boundsMin, boundsMax;
+uniform float voxel;
+
+out vec4 colour;
+
+void main() {
+    vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
+    if (segment.x < 0.0 || segment.x >= segment.y) discard;
+    vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
+    vec4 far = inverseViewProjection * vec4(ndc, 1.0, 1.0);
+    vec3 dir = normalize(far.xyz / far.w - cameraPosition);
+    // Clip [t0, t1] to the grid's box.
+    vec3 inv = 1.0 / dir;
+    vec3 a = (boundsMin - cameraPosition) * inv, b = (boundsMax - cameraPosition) * inv;
+    float t0 = max(segment.x, max(max(min(a.x, b.x), min(a.y, b.y)), min(a.z, b.z)));
+    float t1 = min(segment.y, min(min(max(a.x, b.x), max(a.y, b.y)), max(a.z, b.z)));
+    if (t0 >= t1) discard;
+    int steps = clamp(int(ceil((t1 - t0) / (0.5 * voxel))), 1, 4096);
+    float dt = (t1 - t0) / float(steps);
+    vec3 scale = 1.0 / (boundsMax - boundsMin);
+    vec3 transmittance = vec3(1.0), radiance = vec3(0.0);
+    for (int i = 0; i < steps; ++i) {
+        vec3 p = ((cameraPosition + (t0 + (float(i) + 0.5) * dt) * dir) - boundsMin) * scale;
+        vec3 sigmaT = texture(extinction, p).rgb;
+        vec3 stepT = exp(-sigmaT * dt);
+        // The source over the step, dimmed from the step's start: T (1 - e^{-s dt}) / s -> T dt as s -> 0.
+        vec3 weight = mix(vec3(dt), (1.0 - stepT) / max(sigmaT, vec3(1e-30)), greaterThan(sigmaT * dt, vec3(1e-4)));
+        radiance += transmittance * weight * texture(source, p).rgb;
+        transmittance *= stepT;
+        if (max(transmittance.r, max(transmittance.g, transmittance.b)) < 1e-6) break;
+    }
+    colour = vec4(radiance, 0.0);
+}
