@@ -162,7 +162,9 @@ TEST(Lattice, CollisionAndStreamingConservePower) {
                 const double total = t.absorbed.r + t.escaped.r + t.inFlight.r;
                 EXPECT_NEAR(total, 1.0, 1e-5) << "albedo " << albedo << " sigma_t lambda " << opticalStep;
                 for (const glm::vec4& v : lattice.fluenceTally(device().latticeQueue)) ASSERT_TRUE(std::isfinite(v.r));
-                if (albedo == 1.0) EXPECT_EQ(t.absorbed.r, 0.0);
+                if (albedo == 1.0) {
+                    EXPECT_EQ(t.absorbed.r, 0.0);
+                }
             }
         }
     }
