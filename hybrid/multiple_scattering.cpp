@@ -64,35 +64,42 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
 
     try {
         PhotonMarcher marcher(device, impl_->program, grid, albedo, rays, step);
-        Lattice lattice(device, impl_->program, grid, albedo, s.blocked, s.subSteps);
+        Lattice lattice(device, impl_->program, grid, albedo, s.blocked, s.subSteps, object.desc().medium.g);
         lattice.chooseProbes(s.probes);
         cl::CommandQueue& mq = device.marchQueue;
         cl::CommandQueue& lq = device.latticeQueue;
 
         // Iteration i: rays march k steps into deposit volume i % 2 while the
         // lattice takes in volume (i - 1) % 2 and diffuses (thesis fig. 4.1).
-        int marched = 0;
+        int marched = 0, sinceMarching = 0;
+        bool marchedInto[2] = {false, false};  // deposit volumes waiting for their transfer
+        constexpr int kProbeEvery = 4;
+        bool raysLeft = !rays.rays.empty();
         Rgb previous(0.0), lastChange(0.0);
         bool haveChange = false;
         for (int i = 0;; ++i) {
-            const bool marching = marched < maxMarchSteps && rays.rays.size() > 0;
-            cl::Event marchDone, transferDone;
+            const bool marching = raysLeft && marched < maxMarchSteps;
             if (marching) {
-                marcher.enqueueMarch(mq, s.marchSteps, i % 2, nullptr, &marchDone);
+                marcher.enqueueMarch(mq, s.marchSteps, i % 2);
+                marchedInto[i % 2] = true;
                 marched += s.marchSteps;
                 ++stats.marchLaunches;
                 if (!s.concurrent) mq.finish();
             }
             if (i > 0) {
-                marcher.enqueueTransfer(lq, (i - 1) % 2, lattice.source(), nullptr, &transferDone);
+                if (marchedInto[(i - 1) % 2]) marcher.enqueueTransfer(lq, (i - 1) % 2, lattice.source());
+                marchedInto[(i - 1) % 2] = false;
                 lattice.enqueueLaunch(lq);
                 stats.latticeSteps += lattice.stepsPerLaunch();
             }
             mq.finish();
             lq.finish();
+            if (marching) raysLeft = marcher.marching(mq) > 0;
             ++stats.iterations;
             if (marching || i == 0) continue;
-            // Marching is over and its last deposit transferred: watch the probes.
+            // Marching is over and its last deposit transferred: watch the probes,
+            // every kProbeEvery iterations (reading them back costs a launch and a wait).
+            if (++sinceMarching % kProbeEvery != 0 && stats.latticeSteps < s.maxLatticeSteps) continue;
             const Rgb sum = lattice.probeSum(lq);
             const Rgb change = sum - previous;
             previous = sum;

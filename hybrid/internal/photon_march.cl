@@ -36,7 +36,7 @@ void addFixed(global ulong* at, float3 value, float3 unitsPerWatt) {
     if (value.z > 0.0f) atom_add(at + 2, convert_ulong_rte(value.z * unitsPerWatt.z));
 }
 
-// tallies: [0..2] absorbed, [3..5] escaped, fixed point like deposit.
+// tallies: [0..2] absorbed, [3..5] escaped, fixed point like deposit; [6] rays still marching.
 kernel void march(global PhotonRay* rays, global const float4* material, global const float4* refraction,
                   global ulong* deposit, global ulong* tallies, int4 dims, float4 origin, float voxel,
                   float step, int steps, float4 albedo, float4 unitsPerWatt, int refracting) {
@@ -79,6 +79,7 @@ kernel void march(global PhotonRay* rays, global const float4* material, global 
         }
     }
     addFixed(tallies + 0, absorbed, unitsPerWatt.xyz);
+    if (alive) atom_inc(tallies + 6);
     ray.position = (float4)(x, alive ? 1.0f : 0.0f);
     ray.velocity = (float4)(v, 0.0f);
     ray.power = (float4)(power, 0.0f);

@@ -26,7 +26,7 @@ PhotonMarcher::PhotonMarcher(const ClDevice& device, const cl::Program& program,
     std::vector<cl_ulong> zeros(3 * voxels_, 0);
     for (cl::Buffer& d : deposit_)
         d = cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size() * sizeof(cl_ulong), zeros.data());
-    cl_ulong none[6] = {0, 0, 0, 0, 0, 0};
+    cl_ulong none[7] = {0, 0, 0, 0, 0, 0, 0};
     tallies_ = cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(none), none);
 
     const auto& d = grid.shape.dims;
@@ -51,6 +51,9 @@ void PhotonMarcher::enqueueMarch(cl::CommandQueue& queue, int steps, int which, 
     if (!rayCount_) return;
     march_.setArg(3, deposit_[which]);
     march_.setArg(9, cl_int(steps));
+    const cl_ulong zero = 0;
+    queue.enqueueFillBuffer(tallies_, zero, 6 * sizeof(cl_ulong), sizeof(cl_ulong), after);
+    after = nullptr;
     queue.enqueueNDRangeKernel(march_, cl::NullRange, cl::NDRange(rayCount_), cl::NullRange, after, done);
 }
 
@@ -71,6 +74,12 @@ MarchTallies PhotonMarcher::tallies(cl::CommandQueue& queue) {
         out.escaped[c] = double(t[3 + c]) * w;
     }
     return out;
+}
+
+size_t PhotonMarcher::marching(cl::CommandQueue& queue) {
+    cl_ulong n = 0;
+    queue.enqueueReadBuffer(tallies_, CL_TRUE, 6 * sizeof(cl_ulong), sizeof(n), &n);
+    return size_t(n);
 }
 
 std::vector<clshared::PhotonRay> PhotonMarcher::rays(cl::CommandQueue& queue) {

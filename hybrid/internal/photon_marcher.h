@@ -30,6 +30,8 @@ public:
                          std::vector<cl::Event>* after = nullptr, cl::Event* done = nullptr);
 
     MarchTallies tallies(cl::CommandQueue& queue);
+    // Rays still marching after the last launch (read once it has finished).
+    size_t marching(cl::CommandQueue& queue);
     std::vector<clshared::PhotonRay> rays(cl::CommandQueue& queue);
     Rgb deposited(cl::CommandQueue& queue, int which);  // sum of a deposit volume, W
     const Rgb& emitted() const { return emitted_; }

@@ -236,6 +236,38 @@ TEST(Lattice, BlockedMatchesGlobalLatticeOnceConverged) {
         ASSERT_NEAR(tallies[1][i].r, tallies[0][i].r, 1e-4 * largest) << "voxel " << i;
 }
 
+TEST(MultipleScattering, ProbesStopTheLatticeWithinItsTolerance) {
+    // The probes extrapolate what is still to come; stopping at 1e-3 must leave the
+    // grid within a few times that of a solve run to 1e-7.
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.95), warnings);
+    Light light;
+    light.position = Vec3(3, 3, 3);
+    light.power = Rgb(40.0);
+    MultipleScattering solver;
+    HybridSettings s;
+    s.resolution = 24;
+    std::vector<double> totals;
+    for (double tolerance : {1e-3, 1e-7}) {
+        s.tolerance = tolerance;
+        HybridStats stats;
+        const ScatteringGrid g = solver.solve(sphere, {light}, s, &stats);
+        EXPECT_TRUE(stats.converged);
+        double total = 0;
+        for (float v : g.source) total += v;
+        totals.push_back(total);
+        // Energy: what the rays brought is deposited, absorbed or escaped; what the
+        // lattice received is absorbed, escaped or still in flight.
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(stats.injected[c] + stats.marchAbsorbed[c] + stats.marchEscaped[c], stats.emitted[c],
+                        1e-4 * stats.emitted[c]);
+            EXPECT_LT(stats.latticeInFlight[c], 10 * tolerance * stats.injected[c]);
+        }
+    }
+    EXPECT_GT(totals[1], 0.0);
+    EXPECT_NEAR(totals[0], totals[1], 5e-3 * totals[1]);
+}
+
 TEST(ClDevice, AKernelThatDoesNotBuildShowsItsLog) {
     try {
         device().buildSource("kernel void broken(global float* x) { x[0] = undeclared_name; }", "broken.cl");
