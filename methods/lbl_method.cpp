@@ -1,5 +1,6 @@
 #include "methods/lbl_method.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "hybrid/multiple_scattering.h"
@@ -15,9 +16,10 @@ std::vector<std::string> LblMethod::limitations(const LoadedScene& scene) const 
             out.push_back("object '" + o.desc().name +
                           "': ior differs from 1: the light's rays bend inside (eikonal marching) but single "
                           "scattering and the view rays stay index-matched, and no light is reflected at the boundary");
-        if (m.g != 0.0)
+        if (std::abs(m.g) > 0.5)
             out.push_back("object '" + o.desc().name +
-                          "': g differs from 0: the lattice scatters isotropically from the first scattering on");
+                          "': |g| > 0.5: the lattice scatters isotropically on reduced coefficients (similarity), "
+                          "and the light scattered once is spread isotropically");
     }
     return out;
 }

@@ -17,7 +17,9 @@
 // there (the mean path within one step), so the steady fluence is the track-
 // length sum phi = (kappa_t / sigma_t) / V * sum_steps sum_d f_d, and the light
 // scattered per unit length and solid angle is sigma_s phi / (4 pi)
-// = a kappa_t / (4 pi V) * sum_steps sum_d f_d (kernel finish).
+// = a kappa_t / (4 pi V) * sum_steps sum_d f_d (kernel finish). The same path
+// makes the tallies consistent: sigma_a phi V = (1 - a) kappa_t sum f is what
+// the collisions absorb.
 //
 // Voxels: material.a = occupancy (0: empty, light that arrives there has left
 // the object) or kOpaque (a blocker: light that arrives there is absorbed).
@@ -27,12 +29,11 @@ float3 interaction(float4 m, float lambda) { return -expm1(-m.xyz * lambda); }
 constant int3 kStep[6] = {(int3)(1, 0, 0), (int3)(-1, 0, 0), (int3)(0, 1, 0),
                           (int3)(0, -1, 0), (int3)(0, 0, 1), (int3)(0, 0, -1)};
 
-// One collision at a voxel: out[d] from in[d] (+ source), tallies updated.
-void collide(const float4* in, float4 source, float4 m, float4 albedo, float lambda, float4* out,
-             float4* fluence, float4* absorbed) {
+// One collision at a voxel of interaction chance kt: out[d] from in[d] (+ source), tallies updated.
+void collide(const float4* in, float4 source, float4 kt, float4 albedo, float4* out, float4* fluence,
+             float4* absorbed) {
     float4 sum = in[0] + in[1] + in[2] + in[3] + in[4] + in[5];
     *fluence += sum;
-    float4 kt = (float4)(interaction(m, lambda), 0.0f);
     *absorbed += (1.0f - albedo) * kt * sum;
     float4 isotropic = (albedo * kt * sum + source) * (1.0f / 6.0f);
     for (int d = 0; d < kDirections; ++d) out[d] = (1.0f - kt) * in[d] + isotropic;
@@ -55,7 +56,7 @@ kernel void lattice_collide(global const float4* f, global float4* source, globa
     float4 in[6], o[6];
     for (int d = 0; d < kDirections; ++d) in[d] = f[6 * at + d];
     float4 phi = fluence[at], abs = absorbed[at];
-    collide(in, source[at], material[at], albedo, lambda, o, &phi, &abs);
+    collide(in, source[at], (float4)(interaction(material[at], lambda), 0.0f), albedo, o, &phi, &abs);
     source[at] = (float4)(0.0f);
     fluence[at] = phi;
     absorbed[at] = abs;
@@ -128,10 +129,11 @@ kernel void lattice_blocks(global float4* f, global float4* source, global const
         lf[6 * l + d] = fd;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
+    const float4 kt = (float4)(interaction(m, lambda), 0.0f);
     for (int s = 0; s < subSteps; ++s) {
         float4 in[6], o[6];
         for (int d = 0; d < kDirections; ++d) in[d] = lf[6 * l + d];
-        collide(in, s == 0 ? src : (float4)(0.0f), m, albedo, lambda, o, &phi, &abs);
+        collide(in, s == 0 ? src : (float4)(0.0f), kt, albedo, o, &phi, &abs);
         for (int d = 0; d < kDirections; ++d) lout[6 * l + d] = o[d];
         barrier(CLK_LOCAL_MEM_FENCE);
         for (int d = 0; d < kDirections; ++d) {
@@ -166,11 +168,15 @@ kernel void gather_probes(global const float4* fluence, global const int* probes
     out[get_global_id(0)] = fluence[probes[get_global_id(0)]];
 }
 
-// The radiance grid the view pass reads: sigma_s phi / (4 pi), see the top of this file.
-kernel void finish(global const float4* fluence, global const float4* material, global float4* radiance,
-                   float4 albedo, float lambda, float invFourPiVolume) {
+// The radiance grid the view pass reads: sigma_s phi / (4 pi), see the top of this
+// file. The lattice may run on reduced coefficients (similarity, Lattice's
+// constructor): then the mean path per step is kappa'_t / sigma'_t, while the
+// light scattered towards the eye takes the true sigma_s = albedo sigma_t.
+kernel void finish(global const float4* fluence, global const float4* material, global const float4* latticeMaterial,
+                   global float4* radiance, float4 albedo, float lambda, float invFourPiVolume) {
     size_t at = get_global_id(0);
-    float4 m = material[at];
-    float4 kt = (float4)(interaction(m, lambda), 0.0f);
-    radiance[at] = m.w > 0.0f ? albedo * kt * fluence[at] * invFourPiVolume : (float4)(0.0f);
+    float4 m = material[at], reduced = latticeMaterial[at];
+    float3 path = reduced.xyz * lambda > 1e-4f ? interaction(reduced, lambda) / reduced.xyz : (float3)(lambda);
+    radiance[at] = m.w > 0.0f ? (float4)(albedo.xyz * m.xyz * path, 0.0f) * fluence[at] * invFourPiVolume
+                              : (float4)(0.0f);
 }

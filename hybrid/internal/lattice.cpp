@@ -15,15 +15,15 @@ cl::Buffer zeroBuffer(const cl::Context& cx, size_t bytes) {
 }  // namespace
 
 size_t Lattice::bytesFor(size_t voxels, bool blocked) {
-    // f, (out), source, material, fluence, absorbed, escaped, two interfaces
-    const size_t perVoxel = sizeof(glm::vec4) * (6 + (blocked ? 0 : 6) + 5) +
+    // f, (out), source, two materials, fluence, absorbed, escaped, two interfaces
+    const size_t perVoxel = sizeof(glm::vec4) * (6 + (blocked ? 0 : 6) + 6) +
                             (blocked ? 2 * kInterfaceFloat4PerBlock * sizeof(glm::vec4) / 64 : 0);
     return voxels * perVoxel;
 }
 
 Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxelisation& grid, const Rgb& albedo,
-                 bool blocked, int subSteps)
-    : grid_(grid), albedo_(albedo), blocked_(blocked), subSteps_(std::max(1, subSteps)), voxels_(grid.shape.count()),
+                 bool blocked, int subSteps, double g)
+    : grid_(grid), albedo_(albedo), latticeExtinctionScale_(Rgb(1.0) - albedo * g), blocked_(blocked), subSteps_(std::max(1, subSteps)), voxels_(grid.shape.count()),
       collide_(program, "lattice_collide"), stream_(program, "lattice_stream"), blocks_(program, "lattice_blocks"),
       probes_(program, "gather_probes"), finish_(program, "finish") {
     const cl::Context& cx = device.context;
@@ -33,8 +33,13 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
     fluence_ = zeroBuffer(cx, voxels_ * v4);
     absorbed_ = zeroBuffer(cx, voxels_ * v4);
     escaped_ = zeroBuffer(cx, voxels_ * v4);
-    material_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * v4,
-                           const_cast<glm::vec4*>(grid.material.data()));
+    trueMaterial_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * v4,
+                               const_cast<glm::vec4*>(grid.material.data()));
+    std::vector<glm::vec4> reduced = grid.material;
+    for (glm::vec4& m : reduced) m *= glm::vec4(glm::vec3(latticeExtinctionScale_), 1.0f);
+    material_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * v4, reduced.data());
+    // sigma'_s / sigma'_t = a (1 - g) / (1 - a g)
+    const Rgb latticeAlbedo = albedo * (1.0 - g) / glm::max(latticeExtinctionScale_, Rgb(1e-12));
     const auto& d = grid.shape.dims;
     const cl_int4 dims{{d[0], d[1], d[2], 0}};
     const float lambda = float(grid.shape.voxel);
@@ -46,7 +51,7 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
         collide_.setArg(3, out_);
         collide_.setArg(4, fluence_);
         collide_.setArg(5, absorbed_);
-        collide_.setArg(6, float4Of(albedo));
+        collide_.setArg(6, float4Of(latticeAlbedo));
         collide_.setArg(7, lambda);
         stream_.setArg(0, out_);
         stream_.setArg(1, material_);
@@ -86,7 +91,7 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
     blocks_.setArg(8, active_);
     blocks_.setArg(9, blockActive_);
     blocks_.setArg(10, dims);
-    blocks_.setArg(11, float4Of(albedo));
+    blocks_.setArg(11, float4Of(latticeAlbedo));
     blocks_.setArg(12, lambda);
     blocks_.setArg(13, cl_int(subSteps_));
 }
@@ -158,11 +163,12 @@ ScatteringGrid Lattice::finish(cl::CommandQueue& queue) {
     cl::Buffer radiance(cx, CL_MEM_WRITE_ONLY, voxels_ * sizeof(glm::vec4));
     const double voxel = grid_.shape.voxel;
     finish_.setArg(0, fluence_);
-    finish_.setArg(1, material_);
-    finish_.setArg(2, radiance);
-    finish_.setArg(3, float4Of(albedo_));
-    finish_.setArg(4, float(voxel));
-    finish_.setArg(5, float(kInvFourPi / (voxel * voxel * voxel)));
+    finish_.setArg(1, trueMaterial_);
+    finish_.setArg(2, material_);
+    finish_.setArg(3, radiance);
+    finish_.setArg(4, float4Of(albedo_));
+    finish_.setArg(5, float(voxel));
+    finish_.setArg(6, float(kInvFourPi / (voxel * voxel * voxel)));
     queue.enqueueNDRangeKernel(finish_, cl::NullRange, cl::NDRange(voxels_));
     const std::vector<glm::vec4> r = read(queue, radiance, voxels_);
     ScatteringGrid g;

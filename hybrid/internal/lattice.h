@@ -21,8 +21,11 @@ struct LatticeTotals {
 class Lattice {
 public:
     // subSteps: lattice steps per launch of the blocked lattice (ignored by the global one).
+    // With g != 0 the lattice, whose scattering is isotropic, runs on the reduced
+    // coefficients of the similarity relation, sigma'_s = (1 - g) sigma_s, which
+    // keep the diffusion coefficient 1 / (3 (sigma_a + sigma'_s)) of the medium.
     Lattice(const ClDevice& device, const cl::Program& program, const Voxelisation& grid, const Rgb& albedo,
-            bool blocked, int subSteps);
+            bool blocked, int subSteps, double g = 0.0);
 
     // Power waiting to be emitted isotropically at the next step (float4 per voxel, W).
     cl::Buffer& source() { return source_; }
@@ -48,7 +51,9 @@ private:
     std::vector<glm::vec4> read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count);
 
     const Voxelisation& grid_;
-    Rgb albedo_;
+    Rgb albedo_;                // of the medium: what finish scatters towards the eye
+    Rgb latticeExtinctionScale_;  // sigma'_t / sigma_t = 1 - albedo g
+    cl::Buffer trueMaterial_;     // sigma_t as the medium has it (material_ holds sigma'_t)
     bool blocked_;
     int subSteps_;
     size_t voxels_;
