@@ -18,6 +18,7 @@ Command addRenderCommand(CLI::App& app) {
     struct Options {
         std::string scene, output, method, backend;
         int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64;
+        double noise = 0.0;
         std::string seed = "1";
         bool noSurface = false;
         double tolerance = 1e-3;
@@ -40,6 +41,10 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
     sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl (default 64)")
         ->check(CLI::Range(8, 1024));
+    sub->add_option("--noise", o->noise,
+                    "--method path: sample each pixel until the standard error of its mean is at most this share of "
+                    "it, up to --samples (0: always --samples)")
+        ->check(finiteRange(0.0, 1.0));
     sub->add_option("--max-scatter", o->maxScatter,
                     "Collisions per path of --method path (1: single scattering; default unlimited)")
         ->check(CLI::Range(1, 1 << 20));
@@ -71,6 +76,7 @@ Command addRenderCommand(CLI::App& app) {
         settings.samplesPerPixel = o->samples;
         settings.maxScatter = o->maxScatter;
         settings.gridResolution = o->grid;
+        settings.noiseTarget = o->noise;
         settings.seed = std::stoull(o->seed);
         printWarnings(method.entry->create()->limitations(loaded));  // before the work, not after
         std::string servedBy;

@@ -24,6 +24,7 @@ struct MethodSettings {
     double cutoff = 1e-4;    // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
     int samplesPerPixel = 64;      // Monte Carlo methods: paths per pixel
     int maxScatter = 1 << 20;      // Monte Carlo methods: collisions per path (1: single scattering)
+    double noiseTarget = 0.0;      // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
     uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
     int gridResolution = 64;       // grid methods: voxels along each object's longest side
 };

@@ -7,6 +7,7 @@ namespace lucent {
 Image PathMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
     PathSettings path;
     path.samplesPerPixel = settings.samplesPerPixel;
+    path.noiseTarget = settings.noiseTarget;
     path.maxScatter = settings.maxScatter;
     path.seed = settings.seed;
     path.threads = settings.threads;

@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/camera_rays.h"
@@ -28,6 +29,22 @@ Rgb masked(const Rgb& c, int channel) {
 // The largest extinction the object's medium reaches in the channel: delta tracking's majorant.
 double majorant(const VolumeObject& o, int channel) {
     return channelOf(o.desc().medium.sigmaT, channel) * o.density().maximum();
+}
+
+constexpr int kNoiseBatch = 16;
+
+Rgb standardErrorOf(const Rgb& sum, const Rgb& sumSquares, int n) {
+    const Rgb mean = sum / double(n);
+    const Rgb variance = glm::max(sumSquares / double(n) - mean * mean, Rgb(0.0));
+    return glm::sqrt(variance / double(std::max(n - 1, 1)));
+}
+
+// Every channel's error of the mean within target of it (a dark channel, mean 0, is done).
+bool withinNoiseTarget(const Rgb& sum, const Rgb& sumSquares, int n, double target) {
+    const Rgb error = standardErrorOf(sum, sumSquares, n), mean = sum / double(n);
+    for (int c = 0; c < 3; ++c)
+        if (error[c] > target * mean[c]) return false;
+    return true;
 }
 
 }  // namespace
@@ -182,6 +199,7 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
     Result result{Image(cam.width, cam.height), Image(cam.width, cam.height)};
     const int spp = std::max(settings.samplesPerPixel, 1);
     Progress progress("path tracing", size_t(cam.height));
+    std::atomic<size_t> samplesTaken{0};
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), [&](const tbb::blocked_range<int>& range) {
@@ -191,24 +209,33 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
                     Rng rng(settings.seed, uint64_t(y) * uint64_t(cam.width) + uint64_t(x));
                     const Vec3 dir = rays.direction(x + 0.5, y + 0.5);
                     Rgb sum(0.0), sumSquares(0.0);
-                    for (int s = 0; s < spp; ++s) {
-                        Rgb L(0.0);
-                        if (grey_) L = radiance(rays.origin(), dir, rng, settings, -1);
-                        else
-                            for (int channel = 0; channel < 3; ++channel)
-                                L += radiance(rays.origin(), dir, rng, settings, channel);
-                        sum += L;
-                        sumSquares += L * L;
+                    int taken = 0;
+                    while (taken < spp) {
+                        const int batch = settings.noiseTarget > 0.0 ? std::min(kNoiseBatch, spp - taken) : spp;
+                        for (int s = 0; s < batch; ++s) {
+                            Rgb L(0.0);
+                            if (grey_) L = radiance(rays.origin(), dir, rng, settings, -1);
+                            else
+                                for (int channel = 0; channel < 3; ++channel)
+                                    L += radiance(rays.origin(), dir, rng, settings, channel);
+                            sum += L;
+                            sumSquares += L * L;
+                        }
+                        taken += batch;
+                        if (settings.noiseTarget > 0.0 && taken >= 2 * kNoiseBatch &&
+                            withinNoiseTarget(sum, sumSquares, taken, settings.noiseTarget))
+                            break;
                     }
-                    const Rgb mean = sum / double(spp);
-                    const Rgb variance = glm::max(sumSquares / double(spp) - mean * mean, Rgb(0.0));
+                    const Rgb mean = sum / double(taken);
                     result.mean.at(x, y) = glm::vec3(mean);
-                    result.standardError.at(x, y) = glm::vec3(glm::sqrt(variance / double(std::max(spp - 1, 1))));
+                    result.standardError.at(x, y) = glm::vec3(standardErrorOf(sum, sumSquares, taken));
+                    samplesTaken += size_t(taken);
                 }
                 progress.advance();
             }
         });
     });
+    result.samplesTaken = samplesTaken;
     return result;
 }
 

@@ -25,7 +25,11 @@
 namespace lucent {
 
 struct PathSettings {
-    int samplesPerPixel = 64;
+    int samplesPerPixel = 64;  // with noiseTarget: the most a pixel may take
+    // Relative standard error each pixel stops at (0: every pixel takes
+    // samplesPerPixel). Pixels sample in batches of 16 until the error of their
+    // mean, in every channel, is at most this share of it.
+    double noiseTarget = 0.0;
     int maxScatter = 1 << 20;  // collisions gathered per path: 1 is single scattering
     uint64_t seed = 1;
     int threads = 0;           // 0: all cores
@@ -39,6 +43,7 @@ public:
     struct Result {
         Image mean;           // radiance per pixel
         Image standardError;  // of the mean, per pixel and channel
+        size_t samplesTaken = 0;  // paths over all pixels
     };
     Result render(const PathSettings& settings) const;
 

@@ -175,6 +175,47 @@ TEST(PathTracer, OneCollisionPerPathIsTheSingleScatteringReference) {
     expectSingleScatteringMatchesReference(layered);
 }
 
+TEST(PathTracer, NoiseTargetStopsEachPixelAtItsError) {
+    // Every lit pixel ends with a standard error within the target of its mean,
+    // having taken fewer paths than the cap where the target is easy, and the
+    // image agrees with a fixed-count render within their joint noise.
+    SceneDesc scene;
+    scene.camera.position = Vec3(0, 0, 5);
+    scene.camera.fovYDegrees = 30;
+    scene.camera.width = scene.camera.height = 12;
+    Light light;
+    light.position = Vec3(3, 3, 3);
+    light.power = Rgb(10.0);
+    scene.lights = {light};
+    scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.8)};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const PathTracer tracer(scene, objects);
+    PathSettings adaptive;
+    adaptive.samplesPerPixel = 1 << 16;
+    adaptive.noiseTarget = 0.05;
+    const PathTracer::Result a = tracer.render(adaptive);
+    size_t lit = 0;
+    for (size_t i = 0; i < a.mean.pixels.size(); ++i) {
+        if (a.mean.pixels[i].g <= 0.0f) continue;
+        ++lit;
+        for (int c = 0; c < 3; ++c) EXPECT_LE(a.standardError.pixels[i][c], 0.05 * a.mean.pixels[i][c]) << i;
+    }
+    ASSERT_GT(lit, 40u);
+    EXPECT_LT(a.samplesTaken, a.mean.pixels.size() * size_t(adaptive.samplesPerPixel) / 8);
+    PathSettings fixed;
+    fixed.samplesPerPixel = 512;
+    fixed.seed = 9;
+    const PathTracer::Result f = tracer.render(fixed);
+    double sumA = 0, sumF = 0, var = 0;
+    for (size_t i = 0; i < a.mean.pixels.size(); ++i) {
+        sumA += a.mean.pixels[i].g;
+        sumF += f.mean.pixels[i].g;
+        var += std::pow(a.standardError.pixels[i].g, 2) + std::pow(f.standardError.pixels[i].g, 2);
+    }
+    EXPECT_NEAR(sumA, sumF, 4.0 * std::sqrt(var));
+}
+
 TEST(PathTracer, HenyeyGreensteinSamplesHaveTheMeanCosineG) {
     // <cos theta> of the HG distribution is g (its defining moment).
     for (double g : {-0.9, -0.3, 0.0, 0.5, 0.95}) {
