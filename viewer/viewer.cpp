@@ -18,6 +18,9 @@
 #include "core/input_file.h"
 #include "core/loaded_scene.h"
 #include "methods/method_table.h"
+#ifdef LUCENT_HAVE_OPENCL
+#include "hybrid/multiple_scattering.h"
+#endif
 #include "runtime/internal/gl_program.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
@@ -117,6 +120,10 @@ void lightsPanel(ViewerState& state) {
 
 }  // namespace
 
+// Voxels along each object's longest side when the viewer solves multiple
+// scattering: about a second per solve here (docs/hybrid.md), then free per frame.
+constexpr int kViewerGridResolution = 48;
+
 void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     const std::vector<std::string> script = readScript(options.script);  // cheap: its errors come first
     // The viewer draws with the interactive method of the table, in its own window.
@@ -149,6 +156,11 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         GLuint emptyVao;
         glCreateVertexArrays(1, &emptyVao);
         double frameMs = 0.0;
+        // Multiple scattering: solved on the OpenCL device when asked for and when the lights move.
+#ifdef LUCENT_HAVE_OPENCL
+        std::unique_ptr<hybrid::MultipleScattering> hybridSolver;
+#endif
+        bool gridsShown = false, gridsValid = false;
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
 
@@ -186,6 +198,24 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             if (state.lightsChanged) {
                 renderer.setLights(state.lights);
                 state.lightsChanged = false;
+                gridsValid = false;
+            }
+            if (state.multipleScattering != gridsShown || (gridsShown && !gridsValid)) {
+                renderer.clearScatteringGrids();
+                gridsShown = false;
+                if (state.multipleScattering) {
+#ifdef LUCENT_HAVE_OPENCL
+                    if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
+                    hybrid::HybridSettings hs;
+                    hs.resolution = kViewerGridResolution;
+                    for (const VolumeObject& object : loaded.objects)
+                        renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
+                    gridsShown = gridsValid = true;
+#else
+                    std::fprintf(stderr, "lucent: view: this build has no OpenCL: no multiple scattering\n");
+                    state.multipleScattering = false;
+#endif
+                }
             }
 
             const auto start = std::chrono::steady_clock::now();
@@ -227,6 +257,10 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             ImGui::Checkbox("surface", &state.surface);
             ImGui::SameLine();
             ImGui::Checkbox("scattering", &state.scattering);
+#ifdef LUCENT_HAVE_OPENCL
+            ImGui::SameLine();
+            ImGui::Checkbox("multiple (lbl)", &state.multipleScattering);
+#endif
             ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
             ImGui::SliderFloat("exposure", &state.exposure, 1e-3f, 1e4f, "%.3g", ImGuiSliderFlags_Logarithmic);
             if (ImGui::Button("save screenshot")) state.screenshots.push_back("lucent-screenshot.png");

@@ -116,6 +116,8 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         state.exposure = float(readPositive(in, where, "exposure"));
     } else if (command == "surface") {
         state.surface = onOff(in, where);
+    } else if (command == "multiple") {
+        state.multipleScattering = onOff(in, where);
     } else if (command == "scattering") {
         state.scattering = onOff(in, where);
     } else if (command == "screenshot") {

@@ -15,6 +15,7 @@ struct ViewerState {
     std::vector<Light> lights;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
+    bool multipleScattering = false;  // the hybrid's grids (--method lbl), solved again when the lights change
     float exposure = 0.0f;  // 0: pick one from the first frame
     bool lightsChanged = true;
     bool quit = false;
