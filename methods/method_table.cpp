@@ -1,8 +1,11 @@
 #include "methods/method_table.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
+#include "runtime/gl.h"
+#include "runtime/offscreen_context.h"
 #include "reference/path_method.h"
 #include "reference/reference_method.h"
 #include "runtime/ss_method.h"
@@ -48,10 +51,56 @@ const MethodEntry& findMethod(const std::string& name) {
     throw Error("method '" + name + "' is not built into this binary (built: " + built + ", auto)");
 }
 
-MethodChoice chooseMethod(const SceneDesc&) {
-    // Single scattering is the only interactive method built so far; auto will
-    // weigh the multiple-scattering methods against the media when they land.
-    return {"ss", "the only interactive method built"};
+namespace {
+
+bool available(const std::string& name) {
+    for (const MethodEntry& m : methodTable())
+        if (m.name == name) return m.unavailableReason().empty();
+    return false;
+}
+
+std::string percent(double x) { return std::to_string(int(std::lround(100.0 * x))) + "%"; }
+
+}  // namespace
+
+bool openGlIsSoftware() {
+    static const bool software = [] {
+        try {
+            const auto context = OffscreenContext::create(GlBackend::Auto);
+            const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+            const std::string name = renderer ? renderer : "";
+            return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+                   name.find("swrast") != std::string::npos;
+        } catch (const Error&) {
+            return true;  // no OpenGL at all: the CPU reference is what is left
+        }
+    }();
+    return software;
+}
+
+MethodChoice chooseMethod(const SceneDesc& scene) {
+    // The goal: within kAutoGoal relative RMSE of full transport (the path
+    // tracer) at the least time, from the measurements of docs/accuracy.md
+    // ("What auto picks"). Single scattering alone misses light that grows with
+    // the albedo; below kSingleScatteringAlbedo it stays within the goal.
+    double albedo = 0.0;
+    for (const ObjectDesc& o : scene.objects)
+        albedo = std::max({albedo, o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});
+    const std::string a = std::to_string(albedo).substr(0, 4);
+    if (albedo <= kSingleScatteringAlbedo) {
+        const std::string why = "albedo at most " + a + ": single scattering alone is within " + percent(kAutoGoal) +
+                                " of full transport";
+        const long pixels = long(scene.camera.width) * scene.camera.height;
+        if (pixels <= kReferenceAsFastPixels && openGlIsSoftware())
+            return {"reference", why + "; OpenGL here is a software rasteriser, on which the exact CPU reference is as "
+                                       "fast as ss for an image this small, and it needs no sample files"};
+        return {"ss", why};
+    }
+    const std::string misses = "albedo " + a + ": single scattering alone leaves out the light scattered more than "
+                               "once (11-14% of full transport at albedo 0.2, 27-30% at 0.5)";
+    if (available("lbl")) return {"lbl", misses + "; lbl adds it (within 3-8% measured)"};
+    return {"ss", misses + ", and this build cannot add it (no lbl): expect a dark image; --method path is the "
+                  "ground truth"};
 }
 
 ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {

@@ -18,12 +18,24 @@ std::vector<std::string> methodNames();
 // The entry called name; Error listing the built methods otherwise.
 const MethodEntry& findMethod(const std::string& name);
 
+// What --method auto aims for, from the measurements of docs/accuracy.md
+// ("What auto picks"): relative RMSE against full transport (--method path).
+inline constexpr double kAutoGoal = 0.10;
+// Single scattering alone stays within kAutoGoal of full transport up to this
+// albedo (measured 6.5% on the sphere and 9.5% on the bunny at 0.1, 11% and 14% at 0.2).
+inline constexpr double kSingleScatteringAlbedo = 0.1;
+// Up to this many pixels the CPU reference is as fast as ss on a software OpenGL.
+inline constexpr long kReferenceAsFastPixels = 256 * 256;
+
 // What --method auto picks for a scene, and why (printed to the user).
 struct MethodChoice {
     std::string method;
     std::string reason;
 };
 MethodChoice chooseMethod(const SceneDesc& scene);
+// Whether OpenGL here is a software rasteriser (Mesa's llvmpipe, softpipe,
+// swrast) or missing: then ss has no speed over the CPU reference for small images.
+bool openGlIsSoftware();
 
 // Resolves "auto" and checks availability: the entry to run and, for auto, why.
 struct ResolvedMethod {
