@@ -3,7 +3,7 @@
 // tracer.
 //
 //   build/bin/lucent-bench-hybrid speed    [--grids 64,128] [--albedos 0.5,0.9,0.99] [--repeats N]
-//   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--spp N] [--size N]
+//   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
 // the whole solve, the lattice steps to convergence and the time per step, with
@@ -28,9 +28,12 @@ using namespace lucent;
 
 namespace {
 
-SceneDesc sceneOf(const std::string& model, double albedo) {
+SceneDesc sceneOf(const std::string& model, double albedo, double g = 0.0) {
     SceneDesc s = parseScene(std::string(LUCENT_SOURCE_DIR) + "/models/" + model + ".json");
-    for (ObjectDesc& o : s.objects) o.medium.albedo = Rgb(albedo);
+    for (ObjectDesc& o : s.objects) {
+        o.medium.albedo = Rgb(albedo);
+        o.medium.g = g;
+    }
     s.objects.resize(1);
     return s;
 }
@@ -84,11 +87,11 @@ void speed(const std::vector<int>& grids, const std::vector<double>& albedos, co
         if (k != 16) run(grids.front(), albedos.front(), k, true);
 }
 
-void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size) {
-    std::printf("model,albedo,grid,rmse_ss,rmse_lbl,lbl_s,path_s\n");
+void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g) {
+    std::printf("model,albedo,g,grid,rmse_ss,rmse_lbl,lbl_s,path_s\n");
     for (const char* model : {"sphere", "bunny"})
         for (double albedo : albedos) {
-            SceneDesc scene = sceneOf(model, albedo);
+            SceneDesc scene = sceneOf(model, albedo, g);
             scene.camera.width = scene.camera.height = size;
             LoadedScene loaded = loadScene(scene, false);
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
@@ -104,7 +107,7 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
                 t0 = std::chrono::steady_clock::now();
                 const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
                 const double lblSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                std::printf("%s,%.2f,%d,%.4f,%.4f,%.2f,%.1f\n", model, albedo, grid, relativeRmse(ss, path),
+                std::printf("%s,%.2f,%.2f,%d,%.4f,%.4f,%.2f,%.1f\n", model, albedo, g, grid, relativeRmse(ss, path),
                             relativeRmse(lbl, path), lblSeconds, pathSeconds);
                 std::fflush(stdout);
             }
@@ -118,6 +121,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     std::vector<int> grids{64, 128}, ks{2, 4, 8, 16, 32, 64};
     std::vector<double> albedos;
+    double g = 0.0;
     int repeats = 3, spp = 1024, size = 128, subSteps = hybrid::HybridSettings().subSteps;
     auto* sp = app.add_subcommand("speed", "Solve times, lattice steps, concurrent against sequential, k swept");
     sp->add_option("--grids", grids)->delimiter(',');
@@ -130,10 +134,11 @@ int main(int argc, char** argv) {
     ac->add_option("--albedos", albedos)->delimiter(',');
     ac->add_option("--spp", spp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
     ac->add_option("--size", size, "Image width and height")->check(CLI::Range(8, 2048));
+    ac->add_option("--g", g, "Henyey-Greenstein g of the media")->check(CLI::Range(-0.99, 0.99));
     CLI11_PARSE(app, argc, argv);
     try {
         if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
-        else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size);
+        else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());
         return 1;

@@ -84,6 +84,15 @@ TEST(MethodTable, AutoAddsMultipleScatteringWhereAnyChannelScattersMuch) {
     }
 }
 
+TEST(MethodTable, AutoTakesThePathTracerForStronglyForwardScatteringMedia) {
+    SceneDesc scene = sceneWith(Rgb(0.9), 64);
+    scene.objects[0].medium.g = 0.8;
+    const MethodChoice c = chooseMethod(scene);
+    EXPECT_EQ(c.method, "path") << c.reason;
+    scene.objects[0].medium.g = 0.3;
+    EXPECT_NE(chooseMethod(scene).method, "path");
+}
+
 TEST(MethodTable, AutoSaysWhatItChoseAndWhy) {
     SceneDesc scene;
     const ResolvedMethod r = resolveMethod("auto", scene);
