@@ -20,6 +20,13 @@ install(TARGETS lucent_core lucent_glad lucent_runtime lucent_offscreen lucent_p
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${LUCENT_INSTALL_INCLUDE})
 install(TARGETS lucent RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(LUCENT_HAVE_OPENCL)
+  # The hybrid (multiple scattering on OpenCL): its solver's header only; OpenCL stays private.
+  set_target_properties(lucent_hybrid PROPERTIES EXPORT_NAME hybrid)
+  install(TARGETS lucent_hybrid EXPORT LucentTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} INCLUDES DESTINATION ${LUCENT_INSTALL_INCLUDE})
+  install(FILES hybrid/multiple_scattering.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/hybrid)
+endif()
 install(DIRECTORY core/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/core FILES_MATCHING PATTERN "*.h")
 install(FILES preprocess/preprocessor.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/preprocess)
 install(FILES reference/reference_renderer.h reference/reference_method.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/reference)

@@ -21,6 +21,11 @@ for header in "$prefix"/include/lucent/runtime/*.h; do
     g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" -x c++ - ||
     { echo "FAIL: $header does not compile on its own"; exit 1; }
 done
+if [ -e "$prefix/include/lucent/hybrid" ]; then
+  [ ! -e "$prefix/include/lucent/hybrid/internal" ] || { echo "FAIL: the hybrid's private headers were installed"; exit 1; }
+  echo '#include "hybrid/multiple_scattering.h"' | g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" -x c++ - ||
+    { echo "FAIL: hybrid/multiple_scattering.h does not compile on its own"; exit 1; }
+fi
 test -f "$prefix/share/lucent/plot-accuracy.py" || { echo "FAIL: plot-accuracy.py not installed"; exit 1; }
 
 # The host is built as Lucent was (a sanitized Lucent needs a sanitized host to load it).
