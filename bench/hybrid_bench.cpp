@@ -18,6 +18,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
 #include "hybrid/multiple_scattering.h"
@@ -38,19 +39,6 @@ SceneDesc sceneOf(const std::string& model, double albedo, double g = 0.0) {
     return s;
 }
 
-double luminance(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
-
-double relativeRmse(const Image& image, const Image& truth) {
-    double err = 0, norm = 0;
-    for (size_t i = 0; i < truth.pixels.size(); ++i) {
-        const double t = luminance(truth.pixels[i]);
-        if (t <= 0.0) continue;
-        const double d = luminance(image.pixels[i]) - t;
-        err += d * d;
-        norm += t * t;
-    }
-    return std::sqrt(err / norm);
-}
 
 void speed(const std::vector<int>& grids, const std::vector<double>& albedos, const std::vector<int>& ks, int repeats,
            int subSteps) {
@@ -107,8 +95,8 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
                 t0 = std::chrono::steady_clock::now();
                 const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
                 const double lblSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                std::printf("%s,%.2f,%.2f,%d,%.4f,%.4f,%.2f,%.1f\n", model, albedo, g, grid, relativeRmse(ss, path),
-                            relativeRmse(lbl, path), lblSeconds, pathSeconds);
+                std::printf("%s,%.2f,%.2f,%d,%.4f,%.4f,%.2f,%.1f\n", model, albedo, g, grid, luminanceRelativeRmse(ss, path),
+                            luminanceRelativeRmse(lbl, path), lblSeconds, pathSeconds);
                 std::fflush(stdout);
             }
         }

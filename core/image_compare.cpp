@@ -47,4 +47,20 @@ ImageError compareImages(const Image& test, const Image& reference, int margin) 
     return e;
 }
 
+double luminanceRelativeRmse(const Image& test, const Image& reference) {
+    if (test.width != reference.width || test.height != reference.height)
+        throw Error("images differ in size: " + std::to_string(test.width) + "x" + std::to_string(test.height) +
+                    " against " + std::to_string(reference.width) + "x" + std::to_string(reference.height));
+    auto luminance = [](const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    double err = 0.0, norm = 0.0;
+    for (size_t i = 0; i < reference.pixels.size(); ++i) {
+        const double t = luminance(reference.pixels[i]);
+        if (!(t > 0.0)) continue;
+        const double d = luminance(test.pixels[i]) - t;
+        err += d * d;
+        norm += t * t;
+    }
+    return norm > 0.0 ? std::sqrt(err / norm) : 0.0;
+}
+
 }  // namespace lucent

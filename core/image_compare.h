@@ -16,4 +16,9 @@ struct ImageError {
 // pixel outside the mask within `margin` pixels are left out too.
 ImageError compareImages(const Image& test, const Image& reference, int silhouetteMargin = 0);
 
+// The multiple-scattering metric (docs/accuracy.md): relative RMSE of luminance
+// (Rec. 709 weights), sqrt(sum (Y - Y_ref)^2 / sum Y_ref^2) over the pixels the
+// reference lights at all. Throws Error if the sizes differ.
+double luminanceRelativeRmse(const Image& test, const Image& reference);
+
 }  // namespace lucent

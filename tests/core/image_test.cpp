@@ -5,10 +5,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/image_compare.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -74,6 +76,27 @@ TEST(Image, UnwritablePathIsAnErrorAndLeavesNothing) {
     EXPECT_THROW(writeImage(dir.path() / "missing-dir" / "a.png", image), Error);
     EXPECT_THROW(writeImage(dir.path() / "a.bmp", image), Error);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
+}
+
+}  // namespace
+}  // namespace lucent
+
+namespace lucent {
+namespace {
+
+TEST(ImageCompare, LuminanceRelativeRmseIsTheRootOfSquaredErrorOverSquaredTruth) {
+    // Grey pixels: luminance is the value (the Rec. 709 weights sum to 1).
+    Image truth(2, 1), test(2, 1);
+    truth.pixels = {glm::vec3(1.0f), glm::vec3(0.0f)};
+    test.pixels = {glm::vec3(1.1f), glm::vec3(5.0f)};  // the unlit truth pixel does not count
+    EXPECT_NEAR(luminanceRelativeRmse(test, truth), 0.1, 1e-6);
+    truth.pixels = {glm::vec3(1.0f), glm::vec3(3.0f)};
+    test.pixels = {glm::vec3(2.0f), glm::vec3(3.0f)};
+    EXPECT_NEAR(luminanceRelativeRmse(test, truth), std::sqrt(1.0 / 10.0), 1e-6);
+    // Colour: only green moves luminance by its weight 0.7152.
+    test.pixels = {glm::vec3(1.0f, 2.0f, 1.0f), glm::vec3(3.0f)};
+    EXPECT_NEAR(luminanceRelativeRmse(test, truth), 0.7152 / std::sqrt(10.0), 1e-6);
+    EXPECT_THROW(luminanceRelativeRmse(Image(1, 1), truth), Error);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "methods/method_table.h"
 #include "preprocess/preprocessor.h"
@@ -45,24 +46,10 @@ Renders renderSphere(double sigmaT, double albedo, int pathSamples) {
     return r;
 }
 
-double luminance(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
-
-// Relative RMSE of luminance over the pixels the truth lights.
-double relativeRmse(const Image& image, const Image& truth) {
-    double err = 0, norm = 0;
-    for (size_t i = 0; i < truth.pixels.size(); ++i) {
-        const double t = luminance(truth.pixels[i]);
-        if (t <= 0.0) continue;
-        const double d = luminance(image.pixels[i]) - t;
-        err += d * d;
-        norm += t * t;
-    }
-    return std::sqrt(err / norm);
-}
 
 TEST(LblMethod, WithinTheGoalOfThePathTracerAndFarCloserThanSingleScattering) {
     const Renders r = renderSphere(2.0, 0.8, 2048);
-    const double lbl = relativeRmse(r.lbl, r.path), ss = relativeRmse(r.ss, r.path);
+    const double lbl = luminanceRelativeRmse(r.lbl, r.path), ss = luminanceRelativeRmse(r.ss, r.path);
     std::printf("lbl %.4f ss %.4f\n", lbl, ss);
     EXPECT_LE(lbl, 0.20);
     EXPECT_LT(lbl, 0.5 * ss) << "ss " << ss;
