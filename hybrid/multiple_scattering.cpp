@@ -80,11 +80,15 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
         for (int i = 0;; ++i) {
             const bool marching = raysLeft && marched < maxMarchSteps;
             if (marching) {
+                const auto marchStart = std::chrono::steady_clock::now();
                 marcher.enqueueMarch(mq, s.marchSteps, i % 2);
                 marchedInto[i % 2] = true;
                 marched += s.marchSteps;
                 ++stats.marchLaunches;
-                if (!s.concurrent) mq.finish();
+                if (!s.concurrent) {
+                    mq.finish();
+                    stats.marchSeconds += seconds(marchStart);
+                }
             }
             if (i > 0) {
                 if (marchedInto[(i - 1) % 2]) marcher.enqueueTransfer(lq, (i - 1) % 2, lattice.source());

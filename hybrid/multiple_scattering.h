@@ -33,6 +33,7 @@ struct HybridSettings {
 struct HybridStats {
     std::string device;
     double voxeliseSeconds = 0, solveSeconds = 0;
+    double marchSeconds = 0;     // marching with its atomic deposits alone (measured when not concurrent)
     int iterations = 0, latticeSteps = 0, marchLaunches = 0;
     bool converged = false;
     size_t rays = 0;
