@@ -187,8 +187,6 @@ LayerStack buildLayers(const VolumeObject& object, const PreprocessSettings& set
         if (depth > maxDepth) break;
         stack.depths.push_back(depth);
     }
-    std::fprintf(stderr, "lucent: %s: building %zu offset layers (spacing %.4g, light depth %.4g)\n",
-                 object.desc().name.c_str(), stack.depths.size(), stack.spacing, std::min(maxDepth, 1e300));
     // One distance field serves the layers and the heuristic. Its voxels are 1.5 r:
     // fine enough for marching cubes to follow the surface at the scale samples
     // resolve, and for central differences of T, which varies over a mean free path.
@@ -198,6 +196,10 @@ LayerStack buildLayers(const VolumeObject& object, const PreprocessSettings& set
     if (stack.layers.empty())
         throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " +
                                                      std::to_string(firstLayer * stack.spacing));
+    // The layers that exist: depths past the object's half thickness have none
+    // (the count the sample file records and lucent info shows).
+    std::fprintf(stderr, "lucent: %s: %zu offset layers (spacing %.4g, light depth %.4g)\n",
+                 object.desc().name.c_str(), stack.layers.size(), stack.spacing, std::min(maxDepth, 1e300));
     for (const auto& layer : stack.layers) {
         const uint32_t base = uint32_t(stack.surface.positions.size());
         stack.surface.positions.insert(stack.surface.positions.end(), layer.surface.positions.begin(),

@@ -400,5 +400,27 @@ TEST(Cli, PreprocessThenInfo) {
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "r.pfm"));
 }
 
+// preprocess and info give the same layer count, also where the light reaches
+// deeper than a thin plate's half thickness (fewer layers exist than depths fit).
+TEST(Cli, PreprocessAndInfoAgreeOnTheLayerCount) {
+    test::ScratchDir dir;
+    const auto plate = test::writeBox(dir, "plate.obj", Vec3(-1, -1, -0.05), Vec3(1, 1, 0.05));
+    const auto sceneFile = dir.write("scene.json", scene(plate.string(), R"("sigma_t": 0.5, "albedo": 0.5)"));
+    const auto run = test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 2000");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const auto info = test::runLucent("info " + (dir.path() / "out.lsf").string());
+    ASSERT_EQ(info.exitCode, 0) << info.stderrText;
+    auto numberAfter = [](const std::string& text, const std::string& key) {
+        const size_t at = text.find(key);
+        return at == std::string::npos ? -1 : std::atoi(text.c_str() + at + key.size());
+    };
+    const int printed = numberAfter(run.stderrText, "plate.obj: ");
+    const size_t infoAt = info.stdoutText.find("layers");
+    ASSERT_NE(infoAt, std::string::npos) << info.stdoutText;
+    const int recorded = std::atoi(info.stdoutText.c_str() + info.stdoutText.find_first_not_of(' ', infoAt + 6));
+    EXPECT_GT(recorded, 0) << info.stdoutText;
+    EXPECT_EQ(printed, recorded) << run.stderrText << info.stdoutText;
+}
+
 }  // namespace
 }  // namespace lucent
