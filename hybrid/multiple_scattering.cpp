@@ -115,10 +115,11 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
             // with r = change / previous change, what is still to come is change r / (1 - r).
             bool done = haveChange;
             for (int c = 0; c < 3 && done; ++c) {
-                if (sum[c] <= 0.0) continue;
-                const double r = lastChange[c] > 0.0 ? std::clamp(change[c] / lastChange[c], 0.0, 0.999999) : 1.0;
-                const double remaining = change[c] * r / (1.0 - r);
-                done = change[c] >= 0.0 && remaining <= s.tolerance * sum[c];
+                // A channel whose probes saw nothing more arrive is done (its light has
+                // died out below the tally's float precision).
+                if (sum[c] <= 0.0 || change[c] <= 0.0) continue;
+                const double r = lastChange[c] > 0.0 ? std::min(change[c] / lastChange[c], 0.999999) : 0.999999;
+                done = change[c] * r / (1.0 - r) <= s.tolerance * sum[c];
             }
             lastChange = change;
             haveChange = true;
