@@ -205,12 +205,19 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 gridsShown = false;
                 if (state.multipleScattering) {
 #ifdef LUCENT_HAVE_OPENCL
-                    if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
-                    hybrid::HybridSettings hs;
-                    hs.resolution = kViewerGridResolution;
-                    for (const VolumeObject& object : loaded.objects)
-                        renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
-                    gridsShown = gridsValid = true;
+                    // No device (or a failing one) leaves the viewer running, without the grids.
+                    try {
+                        if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
+                        hybrid::HybridSettings hs;
+                        hs.resolution = kViewerGridResolution;
+                        for (const VolumeObject& object : loaded.objects)
+                            renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
+                        gridsShown = gridsValid = true;
+                    } catch (const Error& e) {
+                        renderer.clearScatteringGrids();
+                        std::fprintf(stderr, "lucent: warning: view: no multiple scattering: %s\n", e.what());
+                        state.multipleScattering = false;
+                    }
 #else
                     std::fprintf(stderr, "lucent: view: this build has no OpenCL: no multiple scattering\n");
                     state.multipleScattering = false;

@@ -2,6 +2,8 @@
 // the light from the right of the sphere to its left between two screenshots.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "core/image.h"
 #include "tests/support/test_support.h"
 
@@ -69,6 +71,17 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
     EXPECT_GT(b, 1.5 * a);
     EXPECT_LT(b, 2.0 * a);
     EXPECT_DOUBLE_EQ(c, a);
+
+    // Without an OpenCL device the toggle warns and the viewer goes on without it.
+    const auto noIcds = dir.path() / "no-icds";
+    std::filesystem::create_directory(noIcds);
+    const auto without = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                         "OCL_ICD_VENDORS=" + noIcds.string() + " xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(without.exitCode, 0) << without.stderrText;
+    EXPECT_NE(without.stderrText.find("lucent: warning: view: no multiple scattering: no OpenCL device found"),
+              std::string::npos)
+        << without.stderrText;
+    EXPECT_DOUBLE_EQ(mean(readPfm(on)), a);
 }
 #endif
 
