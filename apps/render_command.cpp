@@ -17,7 +17,7 @@ namespace lucent {
 Command addRenderCommand(CLI::App& app) {
     struct Options {
         std::string scene, output, method, backend;
-        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64;
+        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64, directions = 48, moments = 16;
         double noise = 0.0;
         std::string seed = "1";
         bool noSurface = false;
@@ -39,8 +39,15 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
-    sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl (default 64)")
+    sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl and mdom (default 64)")
         ->check(CLI::Range(8, 1024));
+    sub->add_option("--directions", o->directions,
+                    "Propagation directions of --method mdom: 24, 48, 80, 120 or 168 (default 48)")
+        ->check(CLI::IsMember({24, 48, 80, 120, 168}));
+    sub->add_option("--moments", o->moments,
+                    "Spherical-harmonic moments of the scattering source per voxel of --method mdom: 4, 9 or 16 "
+                    "(default 16)")
+        ->check(CLI::IsMember({4, 9, 16}));
     sub->add_option("--noise", o->noise,
                     "--method path: sample each pixel until the standard error of its mean is at most this share of "
                     "it, up to --samples (0: always --samples)")
@@ -76,6 +83,8 @@ Command addRenderCommand(CLI::App& app) {
         settings.samplesPerPixel = o->samples;
         settings.maxScatter = o->maxScatter;
         settings.gridResolution = o->grid;
+        settings.directions = o->directions;
+        settings.moments = o->moments;
         settings.noiseTarget = o->noise;
         settings.seed = std::stoull(o->seed);
         printWarnings(method.entry->create()->limitations(loaded));  // before the work, not after

@@ -4,13 +4,16 @@
 //
 //   build/bin/lucent-bench-hybrid speed    [--grids 64,128] [--albedos 0.5,0.9,0.99] [--repeats N]
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
+//                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
+//                                          [--models sphere,bunny]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
 // the whole solve, the lattice steps to convergence and the time per step, with
 // marching and diffusion concurrent (thesis fig. 4.1) and in sequence, and the
 // ray-history size k swept at the first grid and albedo.
-// accuracy: relative RMSE of luminance of ss and of lbl against --method path on
-// the sphere and the bunny (no surface term), for every grid and albedo.
+// accuracy: relative RMSE of luminance of ss and of lbl or mdom against --method
+// path on the sphere and the bunny (no surface term), for every grid and albedo
+// (and, for mdom, every direction count).
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -78,11 +81,20 @@ void speed(const std::vector<int>& grids, const std::vector<double>& albedos, co
         if (k != 16) run(grids.front(), albedos.front(), k, true);
 }
 
-void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g) {
-    std::printf("model,albedo,g,grid,rmse_ss,rmse_lbl,lbl_s,path_s\n");
-    for (const char* model : {"sphere", "bunny"})
+double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec3& c : image.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    return sum / std::max<size_t>(1, image.pixels.size());
+}
+
+void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g,
+              const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
+              const std::vector<std::string>& models) {
+    std::printf("model,albedo,g,grid,directions,moments,rmse_ss,rmse_%s,mean_ratio_%s,%s_s,path_s\n", method.c_str(),
+                method.c_str(), method.c_str());
+    for (const std::string& model : models)
         for (double albedo : albedos) {
-            SceneDesc scene = sceneOf(model, albedo, g);
+            SceneDesc scene = sceneOf(model.c_str(), albedo, g);
             scene.camera.width = scene.camera.height = size;
             LoadedScene loaded = loadScene(scene, false);
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
@@ -93,15 +105,20 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
             const Image path = renderWith(findMethod("path"), loaded, settings);
             const double pathSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
-            for (int grid : grids) {
-                settings.gridResolution = grid;
-                t0 = std::chrono::steady_clock::now();
-                const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
-                const double lblSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                std::printf("%s,%.2f,%.2f,%d,%.4f,%.4f,%.2f,%.1f\n", model, albedo, g, grid, luminanceRelativeRmse(ss, path),
-                            luminanceRelativeRmse(lbl, path), lblSeconds, pathSeconds);
-                std::fflush(stdout);
-            }
+            for (int grid : grids)
+                for (int n : method == "mdom" ? directions : std::vector<int>{0})
+                for (int m : method == "mdom" ? moments : std::vector<int>{0}) {
+                    settings.gridResolution = grid;
+                    if (n > 0) settings.directions = n;
+                    if (m > 0) settings.moments = m;
+                    t0 = std::chrono::steady_clock::now();
+                    const Image image = renderWith(findMethod(method), loaded, settings);
+                    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                    std::printf("%s,%.2f,%.2f,%d,%d,%d,%.4f,%.4f,%.3f,%.2f,%.1f\n", model.c_str(), albedo, g, grid, n,
+                                m, luminanceRelativeRmse(ss, path), luminanceRelativeRmse(image, path),
+                                meanLuminance(image) / meanLuminance(path), seconds, pathSeconds);
+                    std::fflush(stdout);
+                }
         }
 }
 
@@ -120,7 +137,14 @@ int main(int argc, char** argv) {
     sp->add_option("--ks", ks, "Ray-history sizes swept")->delimiter(',');
     sp->add_option("--repeats", repeats)->check(CLI::Range(1, 100));
     sp->add_option("--sub-steps", subSteps, "Lattice steps per block launch")->check(CLI::Range(1, 64));
-    auto* ac = app.add_subcommand("accuracy", "Relative RMSE of ss and lbl against --method path");
+    std::string method = "lbl";
+    std::vector<int> directions{24, 48, 120}, moments{16};
+    std::vector<std::string> models{"sphere", "bunny"};
+    auto* ac = app.add_subcommand("accuracy", "Relative RMSE of ss and lbl or mdom against --method path");
+    ac->add_option("--method", method, "The multiple-scattering method measured")->check(CLI::IsMember({"lbl", "mdom"}));
+    ac->add_option("--directions", directions, "mdom's propagation directions swept")->delimiter(',');
+    ac->add_option("--moments", moments, "mdom's stored moments swept (4, 9, 16)")->delimiter(',');
+    ac->add_option("--models", models, "Bundled models")->delimiter(',')->check(CLI::IsMember({"sphere", "bunny"}));
     ac->add_option("--grids", grids)->delimiter(',');
     ac->add_option("--albedos", albedos)->delimiter(',');
     ac->add_option("--spp", spp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
@@ -129,7 +153,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
-        else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g);
+        else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
+                      directions, moments, models);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());
         return 1;

@@ -27,6 +27,8 @@ struct MethodSettings {
     double noiseTarget = 0.0;      // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
     uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
     int gridResolution = 64;       // grid methods: voxels along each object's longest side
+    int directions = 48;           // discrete ordinates: propagation directions (24, 48, 80, 120, 168)
+    int moments = 16;              // discrete ordinates: spherical-harmonic moments stored per voxel (4, 9, 16)
 };
 
 class Method {

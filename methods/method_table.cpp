@@ -12,6 +12,7 @@
 #ifdef LUCENT_HAVE_OPENCL
 #include "hybrid/multiple_scattering.h"
 #include "methods/lbl_method.h"
+#include "methods/mdom_method.h"
 #endif
 
 namespace lucent {
@@ -30,6 +31,11 @@ const std::vector<MethodEntry>& methodTable() {
          "(thesis ch. 4)",
          true, false, [] { return hybrid::MultipleScattering::unavailableReason(); },
          [] { return std::make_unique<LblMethod>(); }},
+        {"mdom",
+         "single scattering plus multiple scattering by the modified discrete ordinates method on OpenCL, "
+         "anisotropic media included (thesis ch. 5)",
+         true, false, [] { return hybrid::MultipleScattering::unavailableReason(); },
+         [] { return std::make_unique<MdomMethod>(); }},
 #endif
     };
     return table;
@@ -120,8 +126,12 @@ ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {
         }
     }
     ResolvedMethod r;
-    const std::string chosen = name == "auto" ? chooseMethod(scene).method : name;
-    if (name == "auto") r.reason = chooseMethod(scene).reason;
+    std::string chosen = name;
+    if (name == "auto") {
+        MethodChoice choice = chooseMethod(scene);
+        chosen = choice.method;
+        r.reason = std::move(choice.reason);
+    }
     r.entry = &findMethod(chosen);
     const std::string why = r.entry->unavailableReason();
     if (!why.empty()) throw Error("method '" + chosen + "' cannot run here: " + why);

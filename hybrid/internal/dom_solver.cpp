@@ -1,0 +1,214 @@
+#include "hybrid/internal/dom_solver.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+#include "core/spherical_harmonics.h"
+
+namespace lucent::hybrid {
+
+namespace {
+
+constexpr int kPartials = 1024;
+
+cl::Buffer zeroBuffer(const cl::Context& cx, size_t bytes) {
+    std::vector<char> zeros(std::max<size_t>(bytes, 16), 0);
+    return cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(), zeros.data());
+}
+
+template <typename T>
+cl::Buffer constBuffer(const cl::Context& cx, const std::vector<T>& values) {
+    return cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(values.size(), 1) * sizeof(T),
+                      const_cast<T*>(values.data()));
+}
+
+cl_int4 int4Of(const std::array<int, 3>& d) { return {{d[0], d[1], d[2], 0}}; }
+
+}  // namespace
+
+size_t DomSolver::faceOffset(int face, const std::array<int, 3>& d, int directions) {
+    const size_t cells[3] = {size_t(d[1]) * d[2], size_t(d[0]) * d[2], size_t(d[0]) * d[1]};
+    size_t off = 0;
+    for (int a = 0; a < face / 2; ++a) off += 2 * cells[a];
+    return (off + (face & 1) * cells[face / 2]) * directions;
+}
+
+size_t DomSolver::largestBufferFor(size_t voxels, int bands) { return voxels * bands * bands * sizeof(glm::vec4); }
+
+size_t DomSolver::bytesFor(const std::array<int, 3>& d, int directions, int bands) {
+    const size_t voxels = size_t(d[0]) * d[1] * d[2];
+    // source, flux, last flux, total; three float4 materials; two face buffers; two boundaries
+    return 4 * largestBufferFor(voxels, bands) + voxels * 3 * sizeof(glm::vec4) +
+           (size_t(d[0]) * (d[1] + d[2])) * directions / 8 * sizeof(glm::vec4) +
+           2 * faceOffset(6, d, directions) * sizeof(glm::vec4);
+}
+
+DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands,
+                     const BoundaryFlags& reflective)
+    : grid_(grid), ordinates_(ordinatesFor(directions)), moments_(bands * bands) {
+    if (bands < 1 || bands > 4) throw Error("discrete ordinates: 1 to 4 bands of moments, not " + std::to_string(bands));
+    const int k = ordinates_.perOctant, n = 8 * k;
+    program_ = device.buildSource("#define DOM_K " + std::to_string(k) + "\n#define DOM_M " +
+                                      std::to_string(moments_) + "\n#line 1\n" + hybridKernel("dom_sweep.cl"),
+                                  "dom_sweep.cl");
+    sweep_ = cl::Kernel(program_, "dom_sweep");
+    scatter_ = cl::Kernel(program_, "dom_scatter");
+    power_ = cl::Kernel(program_, "dom_power");
+    for (int f = 0; f < 6; ++f) reflectiveMask_ |= reflective[f] ? 1 << f : 0;
+
+    // The directions' moments, weights and voxel crossings (edges may differ per axis).
+    std::vector<float> ylm(size_t(n) * moments_), weights(n), crossing(size_t(k) * 27);
+    std::vector<double> y(moments_);
+    for (int i = 0; i < n; ++i) {
+        evaluateSh(bands, ordinates_.directions[i], y);
+        for (int m = 0; m < moments_; ++m) ylm[size_t(i) * moments_ + m] = float(y[m]);
+        weights[i] = float(ordinates_.weights[i]);
+    }
+    for (int d = 0; d < k; ++d) {
+        const VoxelCrossing c = voxelCrossing(ordinates_.directions[d], grid.edges);
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                crossing[d * 27 + a * 3 + b] = float(c.share[a][b]);
+                crossing[d * 27 + 9 + a * 3 + b] = float(c.tube[a][b]);
+                crossing[d * 27 + 18 + a * 3 + b] = float(c.length[a][b]);
+            }
+    }
+    const cl::Context& cx = device.context;
+    const size_t voxels = grid.count(), values = voxels * moments_;
+    extinction_ = constBuffer(cx, grid.extinction);
+    scattering_ = constBuffer(cx, grid.scattering);
+    phase_ = constBuffer(cx, grid.phase);
+    ylm_ = constBuffer(cx, ylm);
+    weights_ = constBuffer(cx, weights);
+    crossing_ = constBuffer(cx, crossing);
+    source_ = zeroBuffer(cx, values * sizeof(glm::vec4));
+    flux_ = zeroBuffer(cx, values * sizeof(glm::vec4));
+    lastFlux_ = zeroBuffer(cx, values * sizeof(glm::vec4));
+    total_ = zeroBuffer(cx, values * sizeof(glm::vec4));
+    const auto& dm = grid.dims;
+    yFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[2] * k * sizeof(glm::vec4));
+    zFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[1] * k * sizeof(glm::vec4));
+    for (cl::Buffer& b : boundary_) b = zeroBuffer(cx, faceOffset(6, dm, n) * sizeof(glm::vec4));
+    partial_ = zeroBuffer(cx, kPartials * sizeof(glm::vec4));
+
+    sweep_.setArg(0, extinction_);
+    sweep_.setArg(1, source_);
+    sweep_.setArg(3, yFace_);
+    sweep_.setArg(4, zFace_);
+    sweep_.setArg(7, ylm_);
+    sweep_.setArg(8, weights_);
+    sweep_.setArg(9, crossing_);
+    sweep_.setArg(10, int4Of(dm));
+    sweep_.setArg(11, float(std::max({grid.edges.x, grid.edges.y, grid.edges.z})));
+    sweep_.setArg(13, cl_int(reflectiveMask_));
+    scatter_.setArg(2, source_);
+    scatter_.setArg(3, scattering_);
+    scatter_.setArg(4, phase_);
+}
+
+void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source) {
+    if (source.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates source of wrong size");
+    queue.enqueueWriteBuffer(source_, CL_TRUE, 0, source.size() * sizeof(glm::vec4), source.data());
+}
+
+Rgb DomSolver::iterate(cl::CommandQueue& queue) {
+    const auto& d = grid_.dims;
+    sweep_.setArg(2, flux_);
+    sweep_.setArg(5, boundary_[swaps_ % 2]);
+    sweep_.setArg(6, boundary_[(swaps_ + 1) % 2]);
+    for (int octant = 0; octant < 8; ++octant) {
+        sweep_.setArg(12, cl_int(octant));
+        for (int diagonal = 0; diagonal <= d[1] + d[2] - 2; ++diagonal) {
+            const int kFirst = std::max(0, diagonal - (d[1] - 1)), kLast = std::min(d[2] - 1, diagonal);
+            sweep_.setArg(14, cl_int(diagonal));
+            sweep_.setArg(15, cl_int(kFirst));
+            queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)));
+        }
+    }
+    ++swaps_;
+    power_.setArg(0, flux_);
+    power_.setArg(1, partial_);
+    power_.setArg(2, cl_int(grid_.count()));
+    queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
+    std::vector<glm::vec4> partial = read(queue, partial_, kPartials);
+    scatter_.setArg(0, flux_);
+    scatter_.setArg(1, total_);
+    queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
+    std::swap(flux_, lastFlux_);
+    queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
+    Rgb sum(0.0);
+    for (int i = 0; i < kPartials; ++i)
+        for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];
+    return sum;
+}
+
+Rgb DomSolver::totalPower(cl::CommandQueue& queue) {
+    power_.setArg(0, total_);
+    power_.setArg(1, partial_);
+    power_.setArg(2, cl_int(grid_.count()));
+    queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
+    std::vector<glm::vec4> partial = read(queue, partial_, kPartials);
+    Rgb sum(0.0);
+    for (int i = 0; i < kPartials; ++i)
+        for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];
+    return sum;
+}
+
+void DomSolver::addTail(cl::CommandQueue& queue, const Rgb& factor) {
+    cl::Kernel add(program_, "dom_add_scaled");
+    add.setArg(0, total_);
+    add.setArg(1, lastFlux_);
+    add.setArg(2, cl_float4{{float(factor.r), float(factor.g), float(factor.b), 0.0f}});
+    queue.enqueueNDRangeKernel(add, cl::NullRange, cl::NDRange(grid_.count()));
+}
+
+DomSolver::Run DomSolver::run(cl::CommandQueue& queue, double tolerance, int maxIterations,
+                              const std::function<void(int)>& afterEach) {
+    Run r;
+    Rgb total(0.0), previous(0.0);
+    for (int i = 0; i < maxIterations; ++i) {
+        const Rgb power = iterate(queue);
+        total += power;
+        ++r.iterations;
+        if (afterEach) afterEach(i);
+        bool done = i >= 2;  // the first generations (uncollided, once scattered) do not yet decay geometrically
+        Rgb tail(0.0);
+        for (int c = 0; c < 3; ++c) {
+            if (!(power[c] > 0.0) || !(total[c] > 0.0)) {  // nothing left in this channel
+                r.ratio[c] = 0.0;
+                continue;
+            }
+            r.ratio[c] = previous[c] > 0.0 ? power[c] / previous[c] : 1.0;
+            if (r.ratio[c] >= 1.0) {
+                done = false;
+                continue;
+            }
+            tail[c] = r.ratio[c] / (1.0 - r.ratio[c]);
+            done = done && power[c] * tail[c] <= tolerance * total[c];
+        }
+        previous = power;
+        if (done) {
+            addTail(queue, tail);
+            r.converged = true;
+            break;
+        }
+    }
+    return r;
+}
+
+std::vector<glm::vec4> DomSolver::totalFlux(cl::CommandQueue& queue) {
+    return read(queue, total_, grid_.count() * moments_);
+}
+
+std::vector<glm::vec4> DomSolver::boundaryRadiance(cl::CommandQueue& queue) {
+    return read(queue, boundary_[swaps_ % 2], faceOffset(6, grid_.dims, 8 * ordinates_.perOctant));
+}
+
+std::vector<glm::vec4> DomSolver::read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count) {
+    std::vector<glm::vec4> out(count);
+    queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(glm::vec4), out.data());
+    return out;
+}
+
+}  // namespace lucent::hybrid

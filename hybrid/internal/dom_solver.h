@@ -1,0 +1,88 @@
+#pragma once
+// The discrete ordinates solver on the device (dom_sweep.cl): a box of voxels
+// with per-voxel scaled extinction, scattering and phase moments, swept along
+// N directions octant by octant, one scattering generation per iteration
+// (thesis 5.3.3: the G'' of an iteration is this generation's source, G' the
+// next one's, G the total). Used by the renderer's mdom method and by
+// `lucent transport`; knows nothing of meshes or lights.
+#include <array>
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/math.h"
+#include "hybrid/internal/cl_device.h"
+#include "hybrid/ordinates.h"
+
+namespace lucent::hybrid {
+
+struct DomGrid {
+    std::array<int, 3> dims{0, 0, 0};
+    Vec3 edges{1.0};                   // a voxel's edge lengths
+    std::vector<glm::vec4> extinction;  // sigma_t* (delta-M scaled), rgb
+    std::vector<glm::vec4> scattering;  // sigma_s*, rgb
+    std::vector<glm::vec4> phase;       // g*_1, g*_2, g*_3 of the scaled phase function
+    size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+};
+
+// Faces of the box, in the order of the boundary flags: x-, x+, y-, y+, z-, z+.
+using BoundaryFlags = std::array<bool, 6>;
+
+class DomSolver {
+public:
+    // bands: spherical-harmonic bands stored (1 to 4: M = bands^2 moments).
+    // reflective: faces that mirror the light leaving them back in (with one
+    // iteration's delay); the others are vacuum.
+    DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective);
+
+    int moments() const { return moments_; }
+    const Ordinates& ordinates() const { return ordinates_; }
+    // Device memory for a grid of `voxels` and the largest single buffer.
+    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands);
+    static size_t largestBufferFor(size_t voxels, int bands);
+
+    // The first generation's radiance source, [voxel][M] moments (rgb) per unit length.
+    void setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source);
+    // One iteration: eight octant sweeps of the current source, the generation's
+    // flux added to the total and scattered into the next source. Returns the
+    // generation's summed zero moments per channel (how much light it carried).
+    Rgb iterate(cl::CommandQueue& queue);
+    // The total's zero moments summed, per channel.
+    Rgb totalPower(cl::CommandQueue& queue);
+    // Adds factor[c] times the last generation's flux to the total (the
+    // geometric tail of the generations still to come).
+    void addTail(cl::CommandQueue& queue, const Rgb& factor);
+    // Iterates until the generations' estimated remaining light, the geometric
+    // tail last r / (1 - r) with r the ratio of the last two generations, is
+    // below `tolerance` of the total in every channel (then the tail is added), or
+    // until maxIterations. afterEach(iteration) runs after each one.
+    struct Run {
+        int iterations = 0;
+        bool converged = false;
+        Rgb ratio{0.0};  // of the last two generations
+    };
+    Run run(cl::CommandQueue& queue, double tolerance, int maxIterations,
+            const std::function<void(int)>& afterEach = {});
+    // The total flux moments phi_m = sum_n w_n L_n Y_m(omega_n), [voxel][M] (rgb).
+    std::vector<glm::vec4> totalFlux(cl::CommandQueue& queue);
+    // The out-going radiance (rgb) of the last iteration on every face, [face cells][N]
+    // face by face (x-, x+, y-, y+, z-, z+).
+    std::vector<glm::vec4> boundaryRadiance(cl::CommandQueue& queue);
+    static size_t faceOffset(int face, const std::array<int, 3>& dims, int directions);
+
+private:
+    std::vector<glm::vec4> read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count);
+
+    DomGrid grid_;
+    Ordinates ordinates_;
+    int moments_;
+    int reflectiveMask_ = 0;
+    int swaps_ = 0;
+    cl::Program program_;
+    cl::Kernel sweep_, scatter_, power_;
+    cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2],
+        ylm_, weights_, crossing_, partial_;
+};
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,205 @@
+#include "hybrid/mdom_scattering.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/spherical_harmonics.h"
+#include "hybrid/internal/cl_device.h"
+#include "hybrid/internal/dom_solver.h"
+#include "hybrid/ordinates.h"
+#include "hybrid/voxelisation.h"
+
+namespace lucent::hybrid {
+
+struct MdomScattering::Impl {
+    ClDevice device;
+    cl::Program direct = device.build({"dom_direct.cl"});
+};
+
+MdomScattering::MdomScattering() : impl_(std::make_unique<Impl>()) {}
+MdomScattering::~MdomScattering() = default;
+std::string MdomScattering::deviceName() const { return impl_->device.name(); }
+
+ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
+    ScatteringGrid g;
+    g.bounds = bounds;
+    g.dims = dims;
+    const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
+    const int m = bands * bands;
+    g.source.assign(3 * voxels, 0.0f);
+    g.extinction.resize(3 * voxels);
+    const Vec3 voxel = bounds.extent() / Vec3(dims[0], dims[1], dims[2]);
+    std::vector<double> y(m), gl(m);
+    for (int i = 0; i < m; ++i) gl[i] = std::pow(this->g, int(std::sqrt(double(i))));
+    for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+            for (int i = 0; i < dims[0]; ++i) {
+                const size_t v = i + size_t(dims[0]) * (j + size_t(dims[1]) * k);
+                for (int c = 0; c < 3; ++c) g.extinction[3 * v + c] = extinction[v][c];
+                if (scattering[v] == glm::vec4(0.0f)) continue;
+                const Vec3 toEye = eye - (bounds.min + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5));
+                evaluateSh(bands, glm::length(toEye) > 0.0 ? glm::normalize(toEye) : Vec3(0, 0, 1), y);
+                const Vec3 centre = bounds.min + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5);
+                Rgb peak(0.0);
+                for (const Peak& p : peaks) {
+                    const Vec3 w = p.light.type == Light::Type::Point ? centre - p.light.position : p.light.direction;
+                    if (!(glm::length(w) > 0.0) || !(glm::length(toEye) > 0.0)) continue;
+                    const double phase = henyeyGreenstein(glm::dot(glm::normalize(w), glm::normalize(toEye)), this->g);
+                    peak += phase * Rgb(p.excess[v].r, p.excess[v].g, p.excess[v].b);
+                }
+                for (int c = 0; c < 3; ++c) {
+                    double s = 0.0;
+                    for (int n = 0; n < m; ++n) s += gl[n] * double(moments[v * m + n][c]) * y[n];
+                    // The truncated expansion can dip below zero where the light is strongly directional.
+                    g.source[3 * v + c] = float(double(scattering[v][c]) * (std::max(0.0, s) + peak[c]));
+                }
+            }
+    return g;
+}
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+cl_float4 float4Of(const Vec3& v, double w) { return {{float(v.x), float(v.y), float(v.z), float(w)}}; }
+
+}  // namespace
+
+MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector<Light>& lights,
+                                     const MdomSettings& s, MdomStats* statsOut,
+                                     const IterationCallback& afterIteration) {
+    MdomStats stats;
+    ClDevice& device = impl_->device;
+    stats.device = device.name();
+    auto t0 = std::chrono::steady_clock::now();
+    const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
+    const std::string what = "a " + std::to_string(shape.dims[0]) + "x" + std::to_string(shape.dims[1]) + "x" +
+                             std::to_string(shape.dims[2]) + " grid for object '" + object.desc().name + "'";
+    const size_t voxels = shape.count();
+    const int moments = s.bands * s.bands;
+    device.checkMemory(DomSolver::bytesFor(shape.dims, s.directions, s.bands) + voxels * 5 * sizeof(glm::vec4),
+                       DomSolver::largestBufferFor(voxels, s.bands), what);
+    const Voxelisation vox = voxelise(object, s.resolution);
+    stats.voxeliseSeconds = seconds(t0);
+    t0 = std::chrono::steady_clock::now();
+
+    // The scaled medium (delta-M): sigma_t* = sigma_t - f sigma_s, sigma_s* = (1 - f) sigma_s.
+    const MediumDesc& medium = object.desc().medium;
+    const DeltaM dm = deltaM(medium.g, s.bands);
+    DomGrid grid;
+    grid.dims = shape.dims;
+    grid.edges = Vec3(shape.voxel);
+    grid.extinction.assign(voxels, glm::vec4(0.0f));
+    grid.scattering.assign(voxels, glm::vec4(0.0f));
+    grid.phase.assign(voxels, glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f));
+    std::vector<glm::vec4> trueExtinction(voxels, glm::vec4(0.0f));
+    std::vector<cl_int> opaque(voxels, 0);
+    for (size_t v = 0; v < voxels; ++v) {
+        const glm::vec4& m = vox.material[v];
+        if (m.a == kOpaque) {
+            // A blocker absorbs what reaches it: optically thick, not scattering.
+            opaque[v] = 1;
+            grid.extinction[v] = glm::vec4(glm::vec3(float(1e4 / shape.voxel)), 0.0f);
+            continue;
+        }
+        if (!(m.a > 0.0f)) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double sigmaS = medium.albedo[c] * m[c];
+            grid.extinction[v][c] = float(m[c] - dm.f * sigmaS);
+            grid.scattering[v][c] = float((1.0 - dm.f) * sigmaS);
+            trueExtinction[v][c] = m[c];
+        }
+    }
+
+    try {
+        cl::CommandQueue& queue = device.marchQueue;
+        const cl::Context& cx = device.context;
+        // The direct component, light by light: the first source
+        // Q_lm = sigma_s* g*_l E* Y_lm(omega_light) and the forward peak (E* - E) Y_lm.
+        std::vector<glm::vec4> source(voxels * moments, glm::vec4(0.0f));
+        std::vector<MdomSolution::Peak> peaks;
+        {
+            cl::Buffer scaledBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
+                                 grid.extinction.data());
+            cl::Buffer trueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
+                               trueExtinction.data());
+            cl::Buffer opaqueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(cl_int), opaque.data());
+            cl::Buffer scaledOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
+            cl::Buffer trueOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
+            cl::Kernel k(impl_->direct, "dom_uncollided");
+            k.setArg(0, scaledBuf);
+            k.setArg(1, trueBuf);
+            k.setArg(2, opaqueBuf);
+            k.setArg(3, scaledOut);
+            k.setArg(4, trueOut);
+            k.setArg(7, float4Of(shape.origin, 0.0));
+            k.setArg(8, float(shape.voxel));
+            k.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
+            std::vector<glm::vec4> eScaled(voxels), eTrue(voxels);
+            std::vector<double> y(moments);
+            for (const Light& light : lights) {
+                const bool point = light.type == Light::Type::Point;
+                k.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
+                k.setArg(6, float4Of(light.power, 0.0));
+                queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(voxels));
+                queue.enqueueReadBuffer(scaledOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eScaled.data());
+                queue.enqueueReadBuffer(trueOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eTrue.data());
+                MdomSolution::Peak peak{light, std::vector<glm::vec4>(voxels)};
+                for (size_t v = 0; v < voxels; ++v) peak.excess[v] = glm::max(eScaled[v] - eTrue[v], glm::vec4(0.0f));
+                peaks.push_back(std::move(peak));
+                for (int kz = 0; kz < shape.dims[2]; ++kz)
+                    for (int ky = 0; ky < shape.dims[1]; ++ky)
+                        for (int kx = 0; kx < shape.dims[0]; ++kx) {
+                            const size_t v = kx + size_t(shape.dims[0]) * (ky + size_t(shape.dims[1]) * kz);
+                            if (eScaled[v] == glm::vec4(0.0f) && eTrue[v] == glm::vec4(0.0f)) continue;
+                            const Vec3 centre = shape.origin + shape.voxel * Vec3(kx + 0.5, ky + 0.5, kz + 0.5);
+                            Vec3 w = point ? centre - light.position : light.direction;
+                            if (glm::length(w) <= 0.0) continue;
+                            evaluateSh(s.bands, glm::normalize(w), y);
+                            for (int m = 0; m < moments; ++m) {
+                                const int l = int(std::sqrt(double(m)));
+                                source[v * moments + m] += grid.scattering[v] * eScaled[v] * float(dm.moments[l] * y[m]);
+                            }
+
+                        }
+            }
+        }
+        stats.directSeconds = seconds(t0);
+        t0 = std::chrono::steady_clock::now();
+
+        MdomSolution solution;
+        solution.bounds = shape.bounds();
+        solution.dims = shape.dims;
+        solution.bands = s.bands;
+        solution.g = medium.g;
+        solution.extinction = std::move(trueExtinction);
+        solution.scattering.resize(voxels);
+        for (size_t v = 0; v < voxels; ++v)
+            solution.scattering[v] = opaque[v] ? glm::vec4(0.0f)
+                                               : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
+        solution.peaks = std::move(peaks);
+        DomSolver solver(device, grid, s.directions, s.bands, BoundaryFlags{});
+        solver.setSource(queue, source);
+        const std::function<void(int)> each = [&](int i) {
+            if (!afterIteration) return;
+            solution.moments = solver.totalFlux(queue);
+            afterIteration(i, solution);
+        };
+        const DomSolver::Run run = solver.run(queue, s.tolerance, s.maxIterations, each);
+        stats.iterations = run.iterations;
+        stats.converged = run.converged;
+        stats.ratio = run.ratio;
+        solution.moments = solver.totalFlux(queue);
+        stats.sweepSeconds = seconds(t0);
+        if (statsOut) *statsOut = stats;
+        return solution;
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
+                    clErrorText(e.err()));
+    }
+}
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,88 @@
+#pragma once
+// The modified discrete ordinates method of thesis chapter 5 for one object:
+// the light reaching each voxel straight from the lights (the direct
+// component, thesis 5.2) scatters into a source of a few spherical-harmonic
+// moments; sweeps along N directions carry it on, one scattering generation per
+// iteration (5.3); the product is the grid of light scattered twice or more
+// that the runtime's view pass adds to single scattering, as for LBL.
+// Anisotropic media are handled by the delta-M truncation of Henyey-Greenstein
+// (docs/hybrid.md). Runs on OpenCL; nothing here touches OpenGL.
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scattering_grid.h"
+#include "core/scene.h"
+#include "core/volume_object.h"
+
+namespace lucent::hybrid {
+
+struct MdomSettings {
+    int resolution = 64;      // voxels along the longest side of the object's box
+    int directions = 48;      // N propagation directions: 24, 48, 80, 120 or 168
+    int bands = 4;            // spherical-harmonic bands of the stored source (M = bands^2 moments)
+    double tolerance = 1e-2;  // stop when the generations still to come are below this share of the light
+    int maxIterations = 200;  // scattering iterations at most
+};
+
+// The solution for one object. Per voxel: the moments T_lm = int L Y_lm of
+// the light scattered at least once in the delta-M scaled problem, and, per
+// light, the excess E* - E of the scaled direct light over the true one: the
+// forward peak of delta-M, light scattered once or more that went on along the
+// light's direction. The light a voxel scatters towards direction w is
+//   sigma_s sum_l g^l sum_m T_lm Y_lm(w) + sigma_s sum_lights (E* - E) p_HG(w_light . w)
+// (Henyey-Greenstein is diagonal in l; the peak's direction is known exactly),
+// so towards a pinhole camera the view pass's source is a function of the
+// voxel alone: towards(eye) bakes it into the runtime's grid.
+struct MdomSolution {
+    Bounds3 bounds;
+    std::array<int, 3> dims{0, 0, 0};
+    int bands = 0;
+    double g = 0;
+    std::vector<glm::vec4> moments;     // [voxel][bands^2], rgb
+    std::vector<glm::vec4> scattering;  // sigma_s per voxel (true, not scaled), rgb
+    std::vector<glm::vec4> extinction;  // sigma_t per voxel (true), rgb
+    struct Peak {
+        Light light;
+        std::vector<glm::vec4> excess;  // E* - E per voxel, rgb
+    };
+    std::vector<Peak> peaks;
+
+    ScatteringGrid towards(const Vec3& eye) const;
+};
+
+struct MdomStats {
+    std::string device;
+    double voxeliseSeconds = 0, directSeconds = 0, sweepSeconds = 0;
+    int iterations = 0;
+    bool converged = false;
+    Rgb ratio{0.0};           // of the last two generations' light
+};
+
+class MdomScattering {
+public:
+    // Opens the OpenCL device; Error when there is none.
+    MdomScattering();
+    ~MdomScattering();
+    MdomScattering(const MdomScattering&) = delete;
+    MdomScattering& operator=(const MdomScattering&) = delete;
+
+    std::string deviceName() const;
+
+    // afterIteration(i, solution): the solution with the generations so far
+    // (thesis 5.3.3: each iteration's image is available); called only when
+    // given, as it reads the device.
+    using IterationCallback = std::function<void(int, const MdomSolution&)>;
+    MdomSolution solve(const VolumeObject& object, const std::vector<Light>& lights, const MdomSettings& settings,
+                         MdomStats* stats = nullptr, const IterationCallback& afterIteration = {});
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,69 @@
+#include "hybrid/transport.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "hybrid/internal/dom_solver.h"
+#include "hybrid/ordinates.h"
+
+namespace lucent::hybrid {
+
+TransportResult solveTransport(const TransportProblem& p) {
+    const auto start = std::chrono::steady_clock::now();
+    ClDevice device;
+    DomGrid grid;
+    grid.dims = p.cells;
+    grid.edges = p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]);
+    const size_t count = grid.count();
+    const std::string what = "the " + std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" +
+                             std::to_string(p.cells[2]) + " cells of " + p.file.string();
+    device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands),
+                       DomSolver::largestBufferFor(count, p.bands), what);
+    grid.extinction.assign(count, glm::vec4(0.0f));
+    grid.scattering.assign(count, glm::vec4(0.0f));
+    grid.phase.assign(count, glm::vec4(0.0f));
+    const int moments = p.bands * p.bands;
+    std::vector<glm::vec4> source(count * moments, glm::vec4(0.0f));
+    // Cells belong to the last region holding their centre; the rest are vacuum.
+    for (int k = 0; k < p.cells[2]; ++k)
+        for (int j = 0; j < p.cells[1]; ++j)
+            for (int i = 0; i < p.cells[0]; ++i) {
+                const Vec3 centre = p.domain.min + grid.edges * Vec3(i + 0.5, j + 0.5, k + 0.5);
+                const TransportRegion* in = nullptr;
+                for (const TransportRegion& r : p.regions)
+                    if (r.box.contains(centre)) in = &r;
+                if (!in) continue;
+                const size_t v = i + size_t(p.cells[0]) * (j + size_t(p.cells[1]) * k);
+                const DeltaM dm = deltaM(in->g, p.bands);
+                grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 0.0f);
+                grid.scattering[v] = glm::vec4(glm::vec3(float((1.0 - dm.f) * in->sigmaS)), 0.0f);
+                grid.phase[v] = glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f);
+                // An isotropic emission q / (4 pi) per unit length: its zero moment is q / sqrt(4 pi).
+                source[v * moments] = glm::vec4(glm::vec3(float(in->source / std::sqrt(4.0 * kPi))), 0.0f);
+            }
+    try {
+        DomSolver solver(device, grid, p.directions, p.bands, p.reflective);
+        solver.setSource(device.marchQueue, source);
+        const DomSolver::Run run = solver.run(device.marchQueue, p.tolerance, p.maxIterations);
+        const std::vector<glm::vec4> flux = solver.totalFlux(device.marchQueue);
+        TransportResult r;
+        r.iterations = run.iterations;
+        r.converged = run.converged;
+        r.device = device.name();
+        for (const Vec3& x : p.points) {
+            int c[3];
+            for (int a = 0; a < 3; ++a)
+                c[a] = std::clamp(int(std::floor((x[a] - p.domain.min[a]) / grid.edges[a])), 0, p.cells[a] - 1);
+            const size_t v = c[0] + size_t(p.cells[0]) * (c[1] + size_t(p.cells[1]) * c[2]);
+            r.flux.push_back(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));  // phi = sqrt(4 pi) phi_00
+        }
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return r;
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
+                    clErrorText(e.err()));
+    }
+}
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,22 @@
+#pragma once
+// `lucent transport`: the discrete ordinates solver of thesis 5.3 on a problem
+// file (core/transport_problem.h) instead of a scene, so that it can be checked
+// against the standard transport benchmarks. Runs on OpenCL.
+#include <string>
+#include <vector>
+
+#include "core/transport_problem.h"
+
+namespace lucent::hybrid {
+
+struct TransportResult {
+    std::vector<double> flux;  // scalar flux (radiance integrated over 4 pi) at each point, in order
+    int iterations = 0;
+    bool converged = false;
+    double seconds = 0;
+    std::string device;
+};
+
+TransportResult solveTransport(const TransportProblem& problem);
+
+}  // namespace lucent::hybrid

@@ -1,0 +1,237 @@
+// The discrete ordinates solver (thesis 5.3) on the OpenCL device, against
+// independent truths: the angular quadratures and delta-M phase function
+// against their defining integrals; an infinite medium with a uniform source
+// (flux q / sigma_a exactly); a pure absorber against the uncollided flux
+// integrated independently; and the van de Hulst slab (HG g = 0.75).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/spherical_harmonics.h"
+#include "hybrid/internal/cl_device.h"
+#include "hybrid/internal/dom_solver.h"
+#include "hybrid/ordinates.h"
+#include "hybrid/transport.h"
+
+namespace lucent::hybrid {
+namespace {
+
+ClDevice& device() {
+    static ClDevice d;
+    return d;
+}
+
+// A slab of optical thickness b between z = 0 and z = b (sigma_t = 1), infinite
+// across (one wide cell per axis, reflecting sides), lit at normal incidence
+// by a unit flux; returns {Rd, Tt}: what leaves through z = 0 and z = b per
+// unit incident flux, direct transmission included.
+std::pair<double, double> slab(double albedo, double g, double b, int cells, int directions, int bands) {
+    DomGrid grid;
+    grid.dims = {1, 1, cells};
+    const double dz = b / cells;
+    grid.edges = Vec3(1e3, 1e3, dz);
+    const DeltaM dm = deltaM(g, bands);
+    const double sigmaT = 1.0 - dm.f * albedo, sigmaS = (1.0 - dm.f) * albedo;
+    grid.extinction.assign(cells, glm::vec4(glm::vec3(float(sigmaT)), 0.0f));
+    grid.scattering.assign(cells, glm::vec4(glm::vec3(float(sigmaS)), 0.0f));
+    grid.phase.assign(cells, glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f));
+    DomSolver solver(device(), grid, directions, bands, {true, true, true, true, false, false});
+    const int m = bands * bands;
+    std::vector<double> y(m);
+    evaluateSh(bands, Vec3(0, 0, 1), y);
+    std::vector<glm::vec4> source(size_t(cells) * m, glm::vec4(0.0f));
+    for (int k = 0; k < cells; ++k) {
+        // The scaled beam's average over the cell, exp(-sigma* z) integrated exactly.
+        const double e = (std::exp(-sigmaT * k * dz) - std::exp(-sigmaT * (k + 1) * dz)) / (sigmaT * dz);
+        for (int i = 0; i < m; ++i) {
+            const int l = int(std::sqrt(double(i)));
+            source[size_t(k) * m + i] = glm::vec4(glm::vec3(float(sigmaS * dm.moments[l] * e * y[i])), 0.0f);
+        }
+    }
+    cl::CommandQueue& q = device().marchQueue;
+    solver.setSource(q, source);
+    const Ordinates& o = solver.ordinates();
+    const std::array<int, 3> dims = grid.dims;
+    double rd = 0.0, td = 0.0, last = 0.0, previous = 0.0;
+    for (int it = 0; it < 400; ++it) {
+        const double power = solver.iterate(q).r;
+        const std::vector<glm::vec4> out = solver.boundaryRadiance(q);
+        double r = 0.0, t = 0.0;
+        for (size_t n = 0; n < o.directions.size(); ++n) {
+            const double mu = o.directions[n].z;
+            if (mu < 0.0) r += o.weights[n] * -mu * out[DomSolver::faceOffset(4, dims, int(o.directions.size())) + n].r;
+            if (mu > 0.0) t += o.weights[n] * mu * out[DomSolver::faceOffset(5, dims, int(o.directions.size())) + n].r;
+        }
+        rd += r;
+        td += t;
+        previous = last;
+        last = power;
+        if (it > 3 && power < 1e-7 * (rd + td)) break;
+    }
+    (void)previous;
+    return {rd, td + std::exp(-sigmaT * b)};  // the scaled beam carries the forward peak through
+}
+
+TEST(DiscreteOrdinates, QuadraturesIntegrateTheHarmonicsTheSolverUses) {
+    // int Y_lm = sqrt(4 pi) for l = 0 and 0 otherwise; int w w^T = 4 pi / 3 I.
+    // The first makes scattering conserve energy, the second keeps the flux's
+    // direction: both closed forms, checked up to the bands stored (4).
+    for (int count : ordinateCounts()) {
+        const Ordinates o = ordinatesFor(count);
+        ASSERT_EQ(int(o.directions.size()), count);
+        std::vector<double> sum(16, 0.0), y(16);
+        glm::dmat3 second(0.0);
+        for (size_t n = 0; n < o.directions.size(); ++n) {
+            EXPECT_NEAR(glm::length(o.directions[n]), 1.0, 1e-12);
+            evaluateSh(4, o.directions[n], y);
+            for (int i = 0; i < 16; ++i) sum[i] += o.weights[n] * y[i];
+            second += o.weights[n] * glm::outerProduct(o.directions[n], o.directions[n]);
+        }
+        EXPECT_NEAR(sum[0], std::sqrt(4.0 * kPi), 1e-9) << count;
+        for (int i = 1; i < 16; ++i) EXPECT_NEAR(sum[i], 0.0, 1e-9) << count << " moment " << i;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) EXPECT_NEAR(second[a][b], a == b ? 4.0 * kPi / 3.0 : 0.0, 2e-6) << count;
+    }
+}
+
+TEST(DiscreteOrdinates, DiscretePhaseFunctionConservesEnergyAndMeanCosine) {
+    // The delta-M phase function on the quadrature, p(w_n, w') = f delta +
+    // (1 - f) sum_l g*_l sum_m Y_lm(w_n) Y_lm(w'), must integrate to 1 (energy)
+    // and keep Henyey-Greenstein's mean cosine g, for any incident w' and g in
+    // [-0.95, 0.95].
+    const Vec3 incident[] = {glm::normalize(Vec3(0.3, -0.5, 0.8)), Vec3(0, 0, 1), glm::normalize(Vec3(-1, 2, 0.1))};
+    for (int count : {24, 120})
+        for (int bands : {2, 3, 4}) {
+            const Ordinates o = ordinatesFor(count);
+            const int m = bands * bands;
+            std::vector<double> yn(m), yi(m);
+            for (double g = -0.95; g <= 0.951; g += 0.1) {
+                const DeltaM dm = deltaM(g, bands);
+                for (const Vec3& wi : incident) {
+                    evaluateSh(bands, wi, yi);
+                    double total = 0.0, meanCos = 0.0;
+                    for (size_t n = 0; n < o.directions.size(); ++n) {
+                        evaluateSh(bands, o.directions[n], yn);
+                        double p = 0.0;
+                        for (int i = 0; i < m; ++i) p += dm.moments[int(std::sqrt(double(i)))] * yn[i] * yi[i];
+                        total += o.weights[n] * (1.0 - dm.f) * p;
+                        meanCos += o.weights[n] * (1.0 - dm.f) * p * glm::dot(o.directions[n], wi);
+                    }
+                    EXPECT_NEAR(dm.f + total, 1.0, 1e-6) << count << " g " << g;
+                    if (bands >= 2) {
+                        EXPECT_NEAR(dm.f + meanCos, g, 1e-5) << count << " g " << g;
+                    }
+                }
+            }
+        }
+}
+
+TEST(DiscreteOrdinates, VoxelCrossingTubesCarryTheFluxThroughTheFaces) {
+    // Every point of an Out face is reached from exactly one In face, and the
+    // light entering face a (flux A_a w_a per unit radiance) leaves through the
+    // Out faces: sum_Out tube[a][Out] = A_a w_a / V = w_a / h_a.
+    const Vec3 edges(1.0, 0.5, 2.0);
+    for (const Vec3& d : {glm::normalize(Vec3(0.3, 0.5, 0.8)), glm::normalize(Vec3(1, 1, 1)),
+                          glm::normalize(Vec3(0.9, 0.05, 0.1))}) {
+        const VoxelCrossing c = voxelCrossing(d, edges);
+        for (int b = 0; b < 3; ++b) EXPECT_NEAR(c.share[0][b] + c.share[1][b] + c.share[2][b], 1.0, 1e-9);
+        for (int a = 0; a < 3; ++a)
+            EXPECT_NEAR(c.tube[a][0] + c.tube[a][1] + c.tube[a][2], d[a] / edges[a], 1e-9 * d[a] / edges[a]);
+        // A straight path from face x through the voxel to the opposite face is h_x / w_x long.
+        if (c.share[0][0] > 0.0) {
+            EXPECT_NEAR(c.length[0][0], edges.x / d.x, 0.01 * edges.x / d.x);
+        }
+    }
+}
+
+TEST(DiscreteOrdinates, VanDeHulstSlab) {
+    // van de Hulst (1980), Multiple Light Scattering vol. 2, table 35: HG
+    // g = 0.75, albedo 0.9, optical thickness 2, normal incidence,
+    // index-matched: Rd = 0.09739, Tt = 0.66096. The bound follows the angular
+    // resolution: 16 moments hold the scaled phase function to l = 3 and 120
+    // directions resolve the exit distributions to about 1%; 24 directions
+    // leave about a 3% error on the reflected light, whose distribution is the
+    // least smooth (measured 0.5% and 2.7%).
+    const double rdRef = 0.09739, ttRef = 0.66096;
+    for (const auto& [n, bound] : {std::pair{24, 0.03}, std::pair{120, 0.01}}) {
+        const auto [rd, tt] = slab(0.9, 0.75, 2.0, 200, n, 4);
+        EXPECT_NEAR(rd, rdRef, bound * rdRef) << n << " directions";
+        EXPECT_NEAR(tt, ttRef, 0.01 * ttRef) << n << " directions";
+    }
+}
+
+// The uncollided scalar flux at x of an isotropic source q filling box in a
+// medium of extinction sigma everywhere: q / (4 pi) int dOmega int e^{-sigma r} dr
+// over the part of each ray from x inside the box, by a product rule in
+// (cos theta, phi) fine enough for the box's solid angle.
+double uncollidedFlux(const Vec3& x, const Bounds3& box, double q, double sigma) {
+    constexpr int kMu = 2000, kPhi = 4000;
+    double sum = 0.0;
+    for (int i = 0; i < kMu; ++i) {
+        const double mu = -1.0 + (i + 0.5) * 2.0 / kMu, s = std::sqrt(1.0 - mu * mu);
+        for (int j = 0; j < kPhi; ++j) {
+            const double phi = (j + 0.5) * 2.0 * kPi / kPhi;
+            const Vec3 d(s * std::cos(phi), s * std::sin(phi), mu);
+            double t0 = 0.0, t1 = 1e30;
+            for (int a = 0; a < 3; ++a) {
+                if (d[a] == 0.0) {
+                    if (x[a] < box.min[a] || x[a] > box.max[a]) t1 = -1.0;
+                    continue;
+                }
+                double lo = (box.min[a] - x[a]) / d[a], hi = (box.max[a] - x[a]) / d[a];
+                if (lo > hi) std::swap(lo, hi);
+                t0 = std::max(t0, lo);
+                t1 = std::min(t1, hi);
+            }
+            if (t1 > t0) sum += (std::exp(-sigma * t0) - std::exp(-sigma * t1)) / sigma;
+        }
+    }
+    return q / (4.0 * kPi) * sum * (2.0 / kMu) * (2.0 * kPi / kPhi);
+}
+
+TEST(Transport, InfiniteMediumWithUniformSourceGivesSourceOverAbsorption) {
+    // Reflecting faces make the box an infinite medium: every particle emitted
+    // is absorbed somewhere, and by symmetry everywhere alike, so the scalar
+    // flux is q / sigma_a exactly, whatever the scattering and its phase function.
+    for (double g : {0.0, 0.6}) {
+        const std::string text = R"({"domain": {"min": [0, 0, 0], "max": [2, 3, 4], "cells": [4, 6, 8]},
+            "boundary": {"x-": "reflective", "x+": "reflective", "y-": "reflective", "y+": "reflective",
+                         "z-": "reflective", "z+": "reflective"},
+            "regions": [{"min": [0, 0, 0], "max": [2, 3, 4], "sigma_t": 2.0, "sigma_s": 1.5, "g": )" +
+                                 std::to_string(g) + R"(, "source": 3.0}],
+            "points": [[0.1, 0.1, 0.1], [1, 1.5, 2], [1.9, 2.9, 3.9]],
+            "solver": {"directions": 24, "bands": 4, "tolerance": 1e-6}})";
+        const TransportResult r = solveTransport(parseTransportProblemText(text, "infinite.json"));
+        EXPECT_TRUE(r.converged);
+        for (double flux : r.flux) EXPECT_NEAR(flux, 3.0 / 0.5, 1e-3 * 6.0) << "g " << g;
+    }
+}
+
+TEST(Transport, PureAbsorberGivesTheUncollidedFlux) {
+    // A cube source in a pure absorber, vacuum all round: the flux is the
+    // uncollided flux, integrated independently above. Inside the source every
+    // direction set does well; one source width away the discrete directions
+    // miss the source's solid angle unevenly (ray effects).
+    const Bounds3 source{Vec3(2.0), Vec3(3.0)};
+    const std::string text = R"({"domain": {"min": [0, 0, 0], "max": [5, 5, 5], "cells": [25, 25, 25]},
+        "regions": [{"min": [0, 0, 0], "max": [5, 5, 5], "sigma_t": 1.0},
+                    {"min": [2.0, 2.0, 2.0], "max": [3.0, 3.0, 3.0], "sigma_t": 1.0, "source": 1.0}],
+        "points": [[2.5, 2.5, 2.5], [2.5, 2.5, 3.9], [3.9, 3.9, 3.9]],
+        "solver": {"directions": 120, "bands": 4}})";
+    const TransportProblem p = parseTransportProblemText(text, "absorber.json");
+    const TransportResult r = solveTransport(p);
+    // Inside the source the step scheme's cell average is within 5% of the
+    // point value (measured 3.9%); outside, within the 10% goal of the
+    // renderer's methods (measured 5.5% and 1.9% at 120 directions).
+    const double bounds[] = {0.05, 0.10, 0.10};
+    for (size_t i = 0; i < p.points.size(); ++i) {
+        const double truth = uncollidedFlux(p.points[i], source, 1.0, 1.0);
+        EXPECT_NEAR(r.flux[i], truth, bounds[i] * truth) << "point " << i;
+    }
+}
+
+}  // namespace
+}  // namespace lucent::hybrid
