@@ -1,6 +1,7 @@
 #include "hybrid/internal/dom_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/error.h"
@@ -174,6 +175,7 @@ DomSolver::Run DomSolver::run(cl::CommandQueue& queue, double tolerance, int max
         if (afterEach) afterEach(i);
         bool done = i >= 2;  // the first generations (uncollided, once scattered) do not yet decay geometrically
         Rgb tail(0.0);
+        const Rgb lastRatio = r.ratio;
         for (int c = 0; c < 3; ++c) {
             if (!(power[c] > 0.0) || !(total[c] > 0.0)) {  // nothing left in this channel
                 r.ratio[c] = 0.0;
@@ -185,7 +187,12 @@ DomSolver::Run DomSolver::run(cl::CommandQueue& queue, double tolerance, int max
                 continue;
             }
             tail[c] = r.ratio[c] / (1.0 - r.ratio[c]);
-            done = done && power[c] * tail[c] <= tolerance * total[c];
+            // Done when what is still to come is small, or when the ratio has
+            // settled (the generations decay as the slowest mode): a ratio known
+            // to tolerance (1 - r) gives the tail r / (1 - r) to about tolerance.
+            const bool small = power[c] * tail[c] <= tolerance * total[c];
+            const bool settled = i >= 3 && std::abs(r.ratio[c] - lastRatio[c]) <= tolerance * (1.0 - r.ratio[c]);
+            done = done && (small || settled);
         }
         previous = power;
         if (done) {

@@ -53,10 +53,12 @@ public:
     // Adds factor[c] times the last generation's flux to the total (the
     // geometric tail of the generations still to come).
     void addTail(cl::CommandQueue& queue, const Rgb& factor);
-    // Iterates until the generations' estimated remaining light, the geometric
-    // tail last r / (1 - r) with r the ratio of the last two generations, is
-    // below `tolerance` of the total in every channel (then the tail is added), or
-    // until maxIterations. afterEach(iteration) runs after each one.
+    // Iterates until, in every channel, the generations' estimated remaining
+    // light, the geometric tail last r / (1 - r) with r the ratio of the last
+    // two generations, is below `tolerance` of the total, or r has settled to
+    // within tolerance (1 - r) so that the tail is known to about tolerance;
+    // then the tail is added. At most maxIterations. afterEach(iteration) runs
+    // after each one.
     struct Run {
         int iterations = 0;
         bool converged = false;

@@ -174,27 +174,70 @@ TEST_F(BadInput, ShOrderBeyondWhatTheRuntimeEvaluates) {
 
 TEST_F(BadInput, SceneNamesAMethodThisBuildLacks) {
     std::string text = scene((test::modelsDir() / "sphere.obj").string());
-    text.insert(text.rfind('}'), R"(, "render": {"method": "mdom"})");
+    text.insert(text.rfind('}'), R"(, "render": {"method": "dipole"})");
 #ifdef LUCENT_HAVE_OPENCL
-    const std::string built = "ss, reference, path, lbl, auto";
+    const std::string built = "ss, reference, path, lbl, mdom, auto";
 #else
     const std::string built = "ss, reference, path, auto";
 #endif
     expectFailure("render " + dir.write("scene.json", text).string() + " -o " + (dir.path() / "img.png").string(),
-                  "scene.json: /render/method: method 'mdom' is not built into this binary (built: " + built + ")",
+                  "scene.json: /render/method: method 'dipole' is not built into this binary (built: " + built + ")",
                   "img.png");
+}
+
+TEST_F(BadInput, TransportProblemOutOfRange) {
+    const auto file = dir.write("problem.json", R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]},
+        "regions": [{"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1, "sigma_s": 2}], "points": [[0.5, 0.5, 0.5]]})");
+    expectFailure("transport " + file.string() + " -o " + (dir.path() / "flux.csv").string(),
+                  "problem.json: /regions/0: sigma_s (2) exceeds sigma_t (1)", "flux.csv");
+}
+
+TEST_F(BadInput, TransportOutputOverItsProblem) {
+    const auto file = dir.write("problem.json", R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]},
+        "regions": [], "points": [[0.5, 0.5, 0.5]]})");
+    const auto size = std::filesystem::file_size(file);
+    expectFailure("transport " + file.string() + " -o " + file.string(), "problem.json", "flux.csv");
+    EXPECT_EQ(std::filesystem::file_size(file), size);
+}
+
+// lucent transport end to end: an infinite medium (reflecting faces) with a
+// uniform source, whose flux is q / sigma_a = 2 / 0.25 = 8 exactly.
+TEST(Cli, TransportWritesTheFluxAtThePoints) {
+    test::ScratchDir dir;
+    const auto file = dir.write("problem.json", R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [3, 3, 3]},
+        "boundary": {"x-": "reflective", "x+": "reflective", "y-": "reflective", "y+": "reflective",
+                     "z-": "reflective", "z+": "reflective"},
+        "regions": [{"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1, "sigma_s": 0.75, "g": 0.5, "source": 2}],
+        "points": [[0.5, 0.5, 0.5], [0.1, 0.9, 0.2]],
+        "solver": {"directions": 24, "bands": 4, "tolerance": 1e-6}})");
+    const auto run = test::runLucent("transport " + file.string() + " -o " + (dir.path() / "flux.csv").string());
+#ifdef LUCENT_HAVE_OPENCL
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    std::ifstream csv(dir.path() / "flux.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_EQ(header, "x,y,z,flux");
+    const auto rows = test::readCsv(dir.path() / "flux.csv");
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[1][0], "0.1");
+    for (const auto& row : rows) EXPECT_NEAR(std::stod(row[3]), 8.0, 8e-3);
+#else
+    EXPECT_NE(run.exitCode, 0);
+    EXPECT_NE(run.stderrText.find("needs OpenCL"), std::string::npos) << run.stderrText;
+#endif
 }
 
 TEST(Cli, HelpOffersOnlyTheMethodsThisBuildHas) {
     const auto help = test::runLucent("render --help");
     ASSERT_EQ(help.exitCode, 0) << help.stderrText;
 #ifdef LUCENT_HAVE_OPENCL
-    EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,path,lbl,auto}"), std::string::npos) << help.stdoutText;
+    EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,path,lbl,mdom,auto}"), std::string::npos)
+        << help.stdoutText;
 #else
     EXPECT_NE(help.stdoutText.find("--method TEXT:{ss,reference,path,auto}"), std::string::npos) << help.stdoutText;
     EXPECT_EQ(help.stdoutText.find("lbl"), std::string::npos);
-#endif
     EXPECT_EQ(help.stdoutText.find("mdom"), std::string::npos);
+#endif
 }
 
 TEST(Cli, AutoSaysWhatItChoseAndWhy) {

@@ -30,13 +30,14 @@ TEST(MethodTable, NamesAreUniqueWithFactoriesAndAutoLast) {
 
 TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
     try {
-        findMethod("mdom");
+        findMethod("dipole");
         FAIL() << "no error";
     } catch (const Error& e) {
 #ifdef LUCENT_HAVE_OPENCL
-        EXPECT_STREQ(e.what(), "method 'mdom' is not built into this binary (built: ss, reference, path, lbl, auto)");
+        EXPECT_STREQ(e.what(),
+                     "method 'dipole' is not built into this binary (built: ss, reference, path, lbl, mdom, auto)");
 #else
-        EXPECT_STREQ(e.what(), "method 'mdom' is not built into this binary (built: ss, reference, path, auto)");
+        EXPECT_STREQ(e.what(), "method 'dipole' is not built into this binary (built: ss, reference, path, auto)");
 #endif
     }
     SceneDesc scene;
@@ -51,11 +52,12 @@ TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
 
 // auto on scenes where each method is the right answer (the goal and the
 // measured thresholds: docs/accuracy.md, "What auto picks").
-SceneDesc sceneWith(const Rgb& albedo, int size) {
+SceneDesc sceneWith(const Rgb& albedo, int size, double g = 0.0) {
     SceneDesc scene;
     scene.camera.width = scene.camera.height = size;
     ObjectDesc o;
     o.medium.albedo = albedo;
+    o.medium.g = g;
     scene.objects = {o};
     return scene;
 }
@@ -84,11 +86,21 @@ TEST(MethodTable, AutoAddsMultipleScatteringWhereAnyChannelScattersMuch) {
     }
 }
 
-TEST(MethodTable, AutoTakesThePathTracerForStronglyForwardScatteringMedia) {
+TEST(MethodTable, AutoFollowsForwardScatteringWithThePathTracerOrMdom) {
+    // Small images: the path tracer reaches the goal as fast as mdom; large
+    // ones: mdom where this build has it.
     SceneDesc scene = sceneWith(Rgb(0.9), 64);
     scene.objects[0].medium.g = 0.8;
-    const MethodChoice c = chooseMethod(scene);
-    EXPECT_EQ(c.method, "path") << c.reason;
+    const MethodChoice small = chooseMethod(scene);
+    EXPECT_EQ(small.method, "path") << small.reason;
+    EXPECT_NE(small.reason.find("beyond what lbl's diffusion holds"), std::string::npos) << small.reason;
+    const MethodChoice large = chooseMethod(sceneWith(Rgb(0.9), 512, 0.8));
+#ifdef LUCENT_HAVE_OPENCL
+    EXPECT_EQ(large.method, "mdom") << large.reason;
+    EXPECT_NE(large.reason.find("--method path reaches 10%"), std::string::npos) << large.reason;
+#else
+    EXPECT_EQ(large.method, "path") << large.reason;
+#endif
     scene.objects[0].medium.g = 0.3;
     EXPECT_NE(chooseMethod(scene).method, "path");
 }
