@@ -3,9 +3,11 @@
 // tracer.
 //
 //   build/bin/lucent-bench-hybrid speed    [--grids 64,128] [--albedos 0.5,0.9,0.99] [--repeats N]
+//   build/bin/lucent-bench-hybrid mdom     [--grids 64,128] [--directions 24,48] [--iterations 3] [--albedo 0.9]
+//                                          [--g 0.8] [--repeats N]
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
-//                                          [--models sphere,bunny]
+//                                          [--models sphere,bunny] [--light X,Y,Z]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
 // the whole solve, the lattice steps to convergence and the time per step, with
@@ -24,7 +26,9 @@
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
+#include "hybrid/mdom_scattering.h"
 #include "hybrid/multiple_scattering.h"
+#include "hybrid/voxelisation.h"
 #include "methods/method_table.h"
 #include "preprocess/preprocessor.h"
 
@@ -89,12 +93,13 @@ double meanLuminance(const Image& image) {
 
 void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g,
               const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
-              const std::vector<std::string>& models) {
+              const std::vector<std::string>& models, const std::vector<double>& light) {
     std::printf("model,albedo,g,grid,directions,moments,rmse_ss,rmse_%s,mean_ratio_%s,%s_s,path_s\n", method.c_str(),
                 method.c_str(), method.c_str());
     for (const std::string& model : models)
         for (double albedo : albedos) {
             SceneDesc scene = sceneOf(model.c_str(), albedo, g);
+            if (light.size() == 3) scene.lights[0].position = Vec3(light[0], light[1], light[2]);
             scene.camera.width = scene.camera.height = size;
             LoadedScene loaded = loadScene(scene, false);
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
@@ -122,6 +127,54 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
         }
 }
 
+// Thesis Table 5.1: the sphere lit by a point light, N directions, a fixed
+// number of scattering iterations; time per iteration and per octant sweep,
+// device memory, and after each iteration the share of the converged light
+// still missing (the converged solve runs first, untimed, and compiles the kernels).
+void mdomSpeed(const std::vector<int>& grids, const std::vector<int>& directions, int iterations, double albedo,
+               double g, int repeats) {
+    hybrid::MdomScattering solver;
+    std::printf("# device: %s; sphere, albedo %.2f, g %.2f\n", solver.deviceName().c_str(), albedo, g);
+    std::printf("grid,directions,moments,iterations,solve_s,per_iteration_s,per_sweep_s,direct_s,memory_mib,"
+                "missing_after_each\n");
+    const SceneDesc scene = sceneOf("sphere", albedo, g);
+    std::vector<std::string> warnings;
+    const VolumeObject object(scene.objects[0], warnings);
+    const auto power = [](const hybrid::MdomSolution& s) {
+        const int m = s.bands * s.bands;
+        double sum = 0.0;
+        for (size_t v = 0; v * m < s.moments.size(); ++v) sum += s.moments[v * m].g;
+        return sum;
+    };
+    for (int grid : grids)
+        for (int n : directions) {
+            hybrid::MdomSettings s;
+            s.resolution = grid;
+            s.directions = n;
+            s.tolerance = 1e-4;
+            const double converged = power(solver.solve(object, scene.lights, s));
+            s.maxIterations = iterations;
+            s.tolerance = 0.0;  // exactly `iterations`
+            std::vector<double> times, directs;
+            std::string missing;
+            hybrid::MdomStats stats;
+            for (int r = 0; r < repeats; ++r) {
+                missing.clear();
+                solver.solve(object, scene.lights, s, &stats, [&](int, const hybrid::MdomSolution& partial) {
+                    missing += (missing.empty() ? "" : " ") + std::to_string(1.0 - power(partial) / converged).substr(0, 6);
+                });
+                times.push_back(stats.sweepSeconds);
+                directs.push_back(stats.directSeconds);
+            }
+            const double t = median(times);
+            const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);
+            const size_t bytes = hybrid::MdomScattering::bytesFor(shape.dims, n, s.bands);
+            std::printf("%d,%d,%d,%d,%.2f,%.2f,%.3f,%.2f,%zu,%s\n", grid, n, s.bands * s.bands, iterations, t,
+                        t / iterations, t / (8 * iterations), median(directs), bytes >> 20, missing.c_str());
+            std::fflush(stdout);
+        }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -144,17 +197,30 @@ int main(int argc, char** argv) {
     ac->add_option("--method", method, "The multiple-scattering method measured")->check(CLI::IsMember({"lbl", "mdom"}));
     ac->add_option("--directions", directions, "mdom's propagation directions swept")->delimiter(',');
     ac->add_option("--moments", moments, "mdom's stored moments swept (4, 9, 16)")->delimiter(',');
+    std::vector<double> light;
+    ac->add_option("--light", light, "Position of the scene's first light, X,Y,Z")->delimiter(',')->expected(3);
     ac->add_option("--models", models, "Bundled models")->delimiter(',')->check(CLI::IsMember({"sphere", "bunny"}));
     ac->add_option("--grids", grids)->delimiter(',');
     ac->add_option("--albedos", albedos)->delimiter(',');
     ac->add_option("--spp", spp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
     ac->add_option("--size", size, "Image width and height")->check(CLI::Range(8, 2048));
     ac->add_option("--g", g, "Henyey-Greenstein g of the media")->check(CLI::Range(-0.99, 0.99));
+    int iterations = 3;
+    double mdomAlbedo = 0.9, mdomG = 0.8;
+    std::vector<int> mdomGrids{64, 128}, mdomDirections{24, 48};
+    auto* md = app.add_subcommand("mdom", "Thesis Table 5.1: mdom's time per iteration and sweep, memory, convergence");
+    md->add_option("--grids", mdomGrids)->delimiter(',');
+    md->add_option("--directions", mdomDirections)->delimiter(',');
+    md->add_option("--iterations", iterations)->check(CLI::Range(1, 100));
+    md->add_option("--albedo", mdomAlbedo)->check(CLI::Range(0.0, 1.0));
+    md->add_option("--g", mdomG)->check(CLI::Range(-0.99, 0.99));
+    md->add_option("--repeats", repeats)->check(CLI::Range(1, 100));
     CLI11_PARSE(app, argc, argv);
     try {
-        if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
+        if (md->parsed()) mdomSpeed(mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats);
+        else if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
         else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
-                      directions, moments, models);
+                      directions, moments, models, light);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());
         return 1;

@@ -21,6 +21,12 @@ MdomScattering::MdomScattering() : impl_(std::make_unique<Impl>()) {}
 MdomScattering::~MdomScattering() = default;
 std::string MdomScattering::deviceName() const { return impl_->device.name(); }
 
+size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, int bands) {
+    // The solver's buffers, and the direct pass's: two extinctions, two results, the blockers.
+    const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
+    return DomSolver::bytesFor(dims, directions, bands) + voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
+}
+
 ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     ScatteringGrid g;
     g.bounds = bounds;
@@ -68,9 +74,65 @@ cl_float4 float4Of(const Vec3& v, double w) { return {{float(v.x), float(v.y), f
 
 }  // namespace
 
+struct MdomProgress::Impl {
+    ClDevice& device;
+    MdomSettings settings;
+    std::string what;
+    MdomStats stats;
+    MdomSolution solution;  // all but the moments
+    std::unique_ptr<DomSolver> solver;
+
+    [[noreturn]] void fail(const cl::Error& e) const {
+        throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
+                    clErrorText(e.err()));
+    }
+};
+
+MdomProgress::MdomProgress(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+MdomProgress::~MdomProgress() = default;
+const MdomStats& MdomProgress::stats() const { return impl_->stats; }
+
+bool MdomProgress::iterate() {
+    Impl& p = *impl_;
+    if (p.stats.converged || p.stats.iterations >= p.settings.maxIterations) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        p.solver->step(p.device.marchQueue, p.settings.tolerance);
+    } catch (const cl::Error& e) {
+        p.fail(e);
+    }
+    const DomSolver::Run& run = p.solver->progress();
+    p.stats.iterations = run.iterations;
+    p.stats.converged = run.converged;
+    p.stats.ratio = run.ratio;
+    p.stats.sweepSeconds += seconds(t0);
+    return !p.stats.converged && p.stats.iterations < p.settings.maxIterations;
+}
+
+MdomSolution MdomProgress::solution() const {
+    MdomSolution s = impl_->solution;
+    try {
+        s.moments = impl_->solver->totalFlux(impl_->device.marchQueue);
+    } catch (const cl::Error& e) {
+        impl_->fail(e);
+    }
+    return s;
+}
+
 MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector<Light>& lights,
-                                     const MdomSettings& s, MdomStats* statsOut,
-                                     const IterationCallback& afterIteration) {
+                                   const MdomSettings& s, MdomStats* stats, const IterationCallback& afterIteration) {
+    const std::unique_ptr<MdomProgress> progress = begin(object, lights, s);
+    for (bool more = true; more;) {
+        more = progress->iterate();
+        if (afterIteration && progress->stats().iterations > 0)
+            afterIteration(progress->stats().iterations - 1, progress->solution());
+    }
+    if (stats) *stats = progress->stats();
+    return progress->solution();
+}
+
+std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, const std::vector<Light>& lights,
+                                                    const MdomSettings& s) {
     MdomStats stats;
     ClDevice& device = impl_->device;
     stats.device = device.name();
@@ -80,7 +142,7 @@ MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector
                              std::to_string(shape.dims[2]) + " grid for object '" + object.desc().name + "'";
     const size_t voxels = shape.count();
     const int moments = s.bands * s.bands;
-    device.checkMemory(DomSolver::bytesFor(shape.dims, s.directions, s.bands) + voxels * 5 * sizeof(glm::vec4),
+    device.checkMemory(bytesFor(shape.dims, s.directions, s.bands),
                        DomSolver::largestBufferFor(voxels, s.bands), what);
     const Voxelisation vox = voxelise(object, s.resolution);
     stats.voxeliseSeconds = seconds(t0);
@@ -112,6 +174,7 @@ MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector
             grid.scattering[v][c] = float((1.0 - dm.f) * sigmaS);
             trueExtinction[v][c] = m[c];
         }
+        grid.extinction[v].a = grid.scattering[v] != glm::vec4(0.0f) ? 1.0f : 0.0f;  // only scattering voxels
     }
 
     try {
@@ -163,14 +226,12 @@ MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector
                                 const int l = int(std::sqrt(double(m)));
                                 source[v * moments + m] += grid.scattering[v] * eScaled[v] * float(dm.moments[l] * y[m]);
                             }
-
                         }
             }
         }
         stats.directSeconds = seconds(t0);
-        t0 = std::chrono::steady_clock::now();
-
-        MdomSolution solution;
+        auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
+        MdomSolution& solution = progress->solution;
         solution.bounds = shape.bounds();
         solution.dims = shape.dims;
         solution.bands = s.bands;
@@ -181,21 +242,9 @@ MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector
             solution.scattering[v] = opaque[v] ? glm::vec4(0.0f)
                                                : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
         solution.peaks = std::move(peaks);
-        DomSolver solver(device, grid, s.directions, s.bands, BoundaryFlags{});
-        solver.setSource(queue, source);
-        const std::function<void(int)> each = [&](int i) {
-            if (!afterIteration) return;
-            solution.moments = solver.totalFlux(queue);
-            afterIteration(i, solution);
-        };
-        const DomSolver::Run run = solver.run(queue, s.tolerance, s.maxIterations, each);
-        stats.iterations = run.iterations;
-        stats.converged = run.converged;
-        stats.ratio = run.ratio;
-        solution.moments = solver.totalFlux(queue);
-        stats.sweepSeconds = seconds(t0);
-        if (statsOut) *statsOut = stats;
-        return solution;
+        progress->solver = std::make_unique<DomSolver>(device, grid, s.directions, s.bands, BoundaryFlags{});
+        progress->solver->setSource(queue, source);
+        return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));
     } catch (const cl::Error& e) {
         throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
                     clErrorText(e.err()));

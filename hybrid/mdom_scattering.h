@@ -63,6 +63,26 @@ struct MdomStats {
     Rgb ratio{0.0};           // of the last two generations' light
 };
 
+class MdomScattering;
+
+// One object's solve, an iteration at a time (the viewer shows each one). Made
+// by MdomScattering::begin, which must outlive it.
+class MdomProgress {
+public:
+    ~MdomProgress();
+    // One more scattering iteration; false once converged or at the limit.
+    bool iterate();
+    // The generations so far (reads the device).
+    MdomSolution solution() const;
+    const MdomStats& stats() const;
+
+private:
+    friend class MdomScattering;
+    struct Impl;
+    explicit MdomProgress(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
 class MdomScattering {
 public:
     // Opens the OpenCL device; Error when there is none.
@@ -72,11 +92,15 @@ public:
     MdomScattering& operator=(const MdomScattering&) = delete;
 
     std::string deviceName() const;
+    // Device memory a solve on a grid of these dimensions takes.
+    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands);
 
     // afterIteration(i, solution): the solution with the generations so far
     // (thesis 5.3.3: each iteration's image is available); called only when
     // given, as it reads the device.
     using IterationCallback = std::function<void(int, const MdomSolution&)>;
+    std::unique_ptr<MdomProgress> begin(const VolumeObject& object, const std::vector<Light>& lights,
+                                        const MdomSettings& settings);
     MdomSolution solve(const VolumeObject& object, const std::vector<Light>& lights, const MdomSettings& settings,
                          MdomStats* stats = nullptr, const IterationCallback& afterIteration = {});
 

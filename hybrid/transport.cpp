@@ -20,7 +20,7 @@ TransportResult solveTransport(const TransportProblem& p) {
                              std::to_string(p.cells[2]) + " cells of " + p.file.string();
     device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands),
                        DomSolver::largestBufferFor(count, p.bands), what);
-    grid.extinction.assign(count, glm::vec4(0.0f));
+    grid.extinction.assign(count, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
     grid.scattering.assign(count, glm::vec4(0.0f));
     grid.phase.assign(count, glm::vec4(0.0f));
     const int moments = p.bands * p.bands;
@@ -36,7 +36,7 @@ TransportResult solveTransport(const TransportProblem& p) {
                 if (!in) continue;
                 const size_t v = i + size_t(p.cells[0]) * (j + size_t(p.cells[1]) * k);
                 const DeltaM dm = deltaM(in->g, p.bands);
-                grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 0.0f);
+                grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 1.0f);
                 grid.scattering[v] = glm::vec4(glm::vec3(float((1.0 - dm.f) * in->sigmaS)), 0.0f);
                 grid.phase[v] = glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f);
                 // An isotropic emission q / (4 pi) per unit length: its zero moment is q / sqrt(4 pi).

@@ -19,6 +19,7 @@
 #include "core/loaded_scene.h"
 #include "methods/method_table.h"
 #ifdef LUCENT_HAVE_OPENCL
+#include "hybrid/mdom_scattering.h"
 #include "hybrid/multiple_scattering.h"
 #endif
 #include "runtime/internal/gl_program.h"
@@ -159,14 +160,24 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         // Multiple scattering: solved on the OpenCL device when asked for and when the lights move.
 #ifdef LUCENT_HAVE_OPENCL
         std::unique_ptr<hybrid::MultipleScattering> hybridSolver;
+        std::unique_ptr<hybrid::MdomScattering> mdomSolver;
+        std::vector<std::unique_ptr<hybrid::MdomProgress>> mdomRuns;  // one per object while iterating
+        std::vector<hybrid::MdomSolution> mdomSolutions;              // the latest per object
+        Vec3 bakedFor(kInfinity);                                     // the eye the mdom grids were baked for
 #endif
-        bool gridsShown = false, gridsValid = false;
+        using Multiple = ViewerState::Multiple;
+        Multiple gridsShown = Multiple::Off;
+        bool gridsValid = false, solving = false;
+        std::string solveStatus;
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
 
         while (!glfwWindowShouldClose(window.get()) && !state.quit) {
             glfwPollEvents();
-            if (scriptLine < script.size()) {
+            if (state.waiting && !solving) state.waiting = false;
+            if (state.waiting) {
+                // a script's `wait`: the next line when the solve is done
+            } else if (scriptLine < script.size()) {
                 applyScriptLine(state, script[scriptLine], options.script.string() + ":" + std::to_string(scriptLine + 1));
                 ++scriptLine;
             } else if (!options.screenshot.empty()) {
@@ -200,30 +211,77 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 state.lightsChanged = false;
                 gridsValid = false;
             }
-            if (state.multipleScattering != gridsShown || (gridsShown && !gridsValid)) {
+            if (state.multiple != gridsShown || (gridsShown != Multiple::Off && !gridsValid)) {
                 renderer.clearScatteringGrids();
-                gridsShown = false;
-                if (state.multipleScattering) {
+                gridsShown = Multiple::Off;
+                solving = false;
+                solveStatus.clear();
+                if (state.multiple != Multiple::Off) {
 #ifdef LUCENT_HAVE_OPENCL
                     // No device (or a failing one) leaves the viewer running, without the grids.
                     try {
-                        if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
-                        hybrid::HybridSettings hs;
-                        hs.resolution = kViewerGridResolution;
-                        for (const VolumeObject& object : loaded.objects)
-                            renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
-                        gridsShown = gridsValid = true;
+                        if (state.multiple == Multiple::Lbl) {
+                            if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
+                            hybrid::HybridSettings hs;
+                            hs.resolution = kViewerGridResolution;
+                            for (const VolumeObject& object : loaded.objects)
+                                renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
+                        } else {
+                            if (!mdomSolver) mdomSolver = std::make_unique<hybrid::MdomScattering>();
+                            hybrid::MdomSettings ms;
+                            ms.resolution = kViewerGridResolution;
+                            ms.directions = 24;
+                            mdomRuns.clear();
+                            for (const VolumeObject& object : loaded.objects)
+                                mdomRuns.push_back(mdomSolver->begin(object, state.lights, ms));
+                            solving = true;
+                        }
+                        gridsShown = state.multiple;
+                        gridsValid = true;
                     } catch (const Error& e) {
                         renderer.clearScatteringGrids();
                         std::fprintf(stderr, "lucent: warning: view: no multiple scattering: %s\n", e.what());
-                        state.multipleScattering = false;
+                        state.multiple = Multiple::Off;
                     }
 #else
                     std::fprintf(stderr, "lucent: view: this build has no OpenCL: no multiple scattering\n");
-                    state.multipleScattering = false;
+                    state.multiple = Multiple::Off;
 #endif
                 }
             }
+#ifdef LUCENT_HAVE_OPENCL
+            // mdom: one more iteration per frame (thesis 5.3.3: each iteration's
+            // image shown as it comes), its grids baked towards the eye, and baked
+            // again whenever the eye moves.
+            if (gridsShown == Multiple::Mdom) {
+                try {
+                    const Vec3 eye = state.camera.camera().position;
+                    if (solving) {
+                        bool more = false;
+                        mdomSolutions.clear();
+                        for (auto& run : mdomRuns) {
+                            more = run->iterate() || more;
+                            mdomSolutions.push_back(run->solution());
+                        }
+                        const hybrid::MdomStats& st = mdomRuns.front()->stats();
+                        solveStatus = "mdom: iteration " + std::to_string(st.iterations) + (more ? "" : ", done");
+                        solving = more;
+                        bakedFor = Vec3(kInfinity);
+                    }
+                    if (eye != bakedFor) {
+                        renderer.clearScatteringGrids();
+                        for (const hybrid::MdomSolution& solution : mdomSolutions)
+                            renderer.addScatteringGrid(solution.towards(eye));
+                        bakedFor = eye;
+                    }
+                } catch (const Error& e) {
+                    renderer.clearScatteringGrids();
+                    std::fprintf(stderr, "lucent: warning: view: no multiple scattering: %s\n", e.what());
+                    state.multiple = gridsShown = Multiple::Off;
+                    solving = false;
+                }
+            }
+#endif
 
             const auto start = std::chrono::steady_clock::now();
             frame->bindAndClear();
@@ -265,8 +323,10 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             ImGui::SameLine();
             ImGui::Checkbox("scattering", &state.scattering);
 #ifdef LUCENT_HAVE_OPENCL
-            ImGui::SameLine();
-            ImGui::Checkbox("multiple (lbl)", &state.multipleScattering);
+            int multiple = int(state.multiple);
+            ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
+            state.multiple = Multiple(multiple);
+            if (!solveStatus.empty()) ImGui::Text("%s", solveStatus.c_str());
 #endif
             ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
             ImGui::SliderFloat("exposure", &state.exposure, 1e-3f, 1e4f, "%.3g", ImGuiSliderFlags_Logarithmic);

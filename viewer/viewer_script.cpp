@@ -117,7 +117,14 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
     } else if (command == "surface") {
         state.surface = onOff(in, where);
     } else if (command == "multiple") {
-        state.multipleScattering = onOff(in, where);
+        std::string which;
+        in >> which;
+        if (which == "on" || which == "lbl") state.multiple = ViewerState::Multiple::Lbl;
+        else if (which == "mdom") state.multiple = ViewerState::Multiple::Mdom;
+        else if (which == "off") state.multiple = ViewerState::Multiple::Off;
+        else throw Error(where, "multiple needs on, off, lbl or mdom");
+    } else if (command == "wait") {
+        state.waiting = true;
     } else if (command == "scattering") {
         state.scattering = onOff(in, where);
     } else if (command == "screenshot") {

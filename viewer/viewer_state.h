@@ -15,7 +15,12 @@ struct ViewerState {
     std::vector<Light> lights;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
-    bool multipleScattering = false;  // the hybrid's grids (--method lbl), solved again when the lights change
+    // Multiple scattering added by a hybrid's grids, solved again when the
+    // lights change: lbl (docs/hybrid.md) at once, mdom (docs/mdom.md) one
+    // iteration per frame, each shown as it comes.
+    enum class Multiple { Off, Lbl, Mdom };
+    Multiple multiple = Multiple::Off;
+    bool waiting = false;  // a script's `wait`: no further script line until the solve is done
     float exposure = 0.0f;  // 0: pick one from the first frame
     bool lightsChanged = true;
     bool quit = false;

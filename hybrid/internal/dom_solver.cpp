@@ -164,44 +164,48 @@ void DomSolver::addTail(cl::CommandQueue& queue, const Rgb& factor) {
     queue.enqueueNDRangeKernel(add, cl::NullRange, cl::NDRange(grid_.count()));
 }
 
+bool DomSolver::step(cl::CommandQueue& queue, double tolerance) {
+    if (run_.converged) return false;
+    const Rgb power = iterate(queue);
+    total_power_ += power;
+    const int i = run_.iterations++;
+    bool done = i >= 2;  // the first generations (uncollided, once scattered) do not yet decay geometrically
+    Rgb tail(0.0);
+    const Rgb lastRatio = run_.ratio;
+    for (int c = 0; c < 3; ++c) {
+        if (!(power[c] > 0.0) || !(total_power_[c] > 0.0)) {  // nothing left in this channel
+            run_.ratio[c] = 0.0;
+            continue;
+        }
+        run_.ratio[c] = previous_power_[c] > 0.0 ? power[c] / previous_power_[c] : 1.0;
+        if (run_.ratio[c] >= 1.0) {
+            done = false;
+            continue;
+        }
+        tail[c] = run_.ratio[c] / (1.0 - run_.ratio[c]);
+        // Done when what is still to come is small, or when the ratio has
+        // settled (the generations decay as the slowest mode): a ratio known
+        // to tolerance (1 - r) gives the tail r / (1 - r) to about tolerance.
+        const bool small = power[c] * tail[c] <= tolerance * total_power_[c];
+        const bool settled = i >= 3 && std::abs(run_.ratio[c] - lastRatio[c]) <= tolerance * (1.0 - run_.ratio[c]);
+        done = done && (small || settled);
+    }
+    previous_power_ = power;
+    if (done) {
+        addTail(queue, tail);
+        run_.converged = true;
+    }
+    return !done;
+}
+
 DomSolver::Run DomSolver::run(cl::CommandQueue& queue, double tolerance, int maxIterations,
                               const std::function<void(int)>& afterEach) {
-    Run r;
-    Rgb total(0.0), previous(0.0);
-    for (int i = 0; i < maxIterations; ++i) {
-        const Rgb power = iterate(queue);
-        total += power;
-        ++r.iterations;
-        if (afterEach) afterEach(i);
-        bool done = i >= 2;  // the first generations (uncollided, once scattered) do not yet decay geometrically
-        Rgb tail(0.0);
-        const Rgb lastRatio = r.ratio;
-        for (int c = 0; c < 3; ++c) {
-            if (!(power[c] > 0.0) || !(total[c] > 0.0)) {  // nothing left in this channel
-                r.ratio[c] = 0.0;
-                continue;
-            }
-            r.ratio[c] = previous[c] > 0.0 ? power[c] / previous[c] : 1.0;
-            if (r.ratio[c] >= 1.0) {
-                done = false;
-                continue;
-            }
-            tail[c] = r.ratio[c] / (1.0 - r.ratio[c]);
-            // Done when what is still to come is small, or when the ratio has
-            // settled (the generations decay as the slowest mode): a ratio known
-            // to tolerance (1 - r) gives the tail r / (1 - r) to about tolerance.
-            const bool small = power[c] * tail[c] <= tolerance * total[c];
-            const bool settled = i >= 3 && std::abs(r.ratio[c] - lastRatio[c]) <= tolerance * (1.0 - r.ratio[c]);
-            done = done && (small || settled);
-        }
-        previous = power;
-        if (done) {
-            addTail(queue, tail);
-            r.converged = true;
-            break;
-        }
+    while (run_.iterations < maxIterations) {
+        const bool more = step(queue, tolerance);
+        if (afterEach) afterEach(run_.iterations - 1);
+        if (!more) break;
     }
-    return r;
+    return run_;
 }
 
 std::vector<glm::vec4> DomSolver::totalFlux(cl::CommandQueue& queue) {

@@ -20,7 +20,8 @@ namespace lucent::hybrid {
 struct DomGrid {
     std::array<int, 3> dims{0, 0, 0};
     Vec3 edges{1.0};                   // a voxel's edge lengths
-    std::vector<glm::vec4> extinction;  // sigma_t* (delta-M scaled), rgb
+    std::vector<glm::vec4> extinction;  // sigma_t* (delta-M scaled), rgb; a: 1 where the flux is wanted, else 0
+                                        // (a voxel with a = 0 must have no source)
     std::vector<glm::vec4> scattering;  // sigma_s*, rgb
     std::vector<glm::vec4> phase;       // g*_1, g*_2, g*_3 of the scaled phase function
     size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
@@ -66,6 +67,10 @@ public:
     };
     Run run(cl::CommandQueue& queue, double tolerance, int maxIterations,
             const std::function<void(int)>& afterEach = {});
+    // The same one iteration at a time (for a viewer that shows each one):
+    // false once converged, the tail added.
+    bool step(cl::CommandQueue& queue, double tolerance);
+    const Run& progress() const { return run_; }
     // The total flux moments phi_m = sum_n w_n L_n Y_m(omega_n), [voxel][M] (rgb).
     std::vector<glm::vec4> totalFlux(cl::CommandQueue& queue);
     // The out-going radiance (rgb) of the last iteration on every face, [face cells][N]
@@ -81,6 +86,8 @@ private:
     int moments_;
     int reflectiveMask_ = 0;
     int swaps_ = 0;
+    Run run_;
+    Rgb total_power_{0.0}, previous_power_{0.0};
     cl::Program program_;
     cl::Kernel sweep_, scatter_, power_;
     cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2],

@@ -35,7 +35,7 @@ std::pair<double, double> slab(double albedo, double g, double b, int cells, int
     grid.edges = Vec3(1e3, 1e3, dz);
     const DeltaM dm = deltaM(g, bands);
     const double sigmaT = 1.0 - dm.f * albedo, sigmaS = (1.0 - dm.f) * albedo;
-    grid.extinction.assign(cells, glm::vec4(glm::vec3(float(sigmaT)), 0.0f));
+    grid.extinction.assign(cells, glm::vec4(glm::vec3(float(sigmaT)), 1.0f));
     grid.scattering.assign(cells, glm::vec4(glm::vec3(float(sigmaS)), 0.0f));
     grid.phase.assign(cells, glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f));
     DomSolver solver(device(), grid, directions, bands, {true, true, true, true, false, false});

@@ -61,9 +61,13 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
       "render": {"surface": false}})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto off = dir.path() / "off.pfm", on = dir.path() / "on.pfm", offAgain = dir.path() / "off2.pfm";
+    const auto first = dir.path() / "first.pfm", done = dir.path() / "done.pfm";
+    // mdom iterates one scattering generation per frame: the first frame shows
+    // one generation, `wait` lets it converge.
     const auto script = dir.write("toggle.txt", "surface off\nscreenshot " + off.string() + "\nmultiple on\nscreenshot " +
                                                     on.string() + "\nmultiple off\nscreenshot " + offAgain.string() +
-                                                    "\nquit\n");
+                                                    "\nmultiple mdom\nscreenshot " + first.string() +
+                                                    "\nwait\nscreenshot " + done.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 320x240x24'");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
@@ -71,6 +75,11 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
     EXPECT_GT(b, 1.5 * a);
     EXPECT_LT(b, 2.0 * a);
     EXPECT_DOUBLE_EQ(c, a);
+    const double d = mean(readPfm(first)), e = mean(readPfm(done));
+    EXPECT_GT(d, a);
+    EXPECT_GT(e, 1.1 * d);  // one generation of 2-3 dozen is well short of them all
+    EXPECT_GT(e, 1.5 * a);
+    EXPECT_LT(e, 2.0 * a);
 
     // Without an OpenCL device the toggle warns and the viewer goes on without it.
     const auto noIcds = dir.path() / "no-icds";
