@@ -45,9 +45,9 @@ Command addRenderCommand(CLI::App& app) {
                     "Propagation directions of --method mdom: 24, 48, 80, 120 or 168 (default 48)")
         ->check(CLI::IsMember({24, 48, 80, 120, 168}));
     sub->add_option("--moments", o->moments,
-                    "Spherical-harmonic moments of the scattering source per voxel of --method mdom: 4, 9 or 16 "
-                    "(default 16)")
-        ->check(CLI::IsMember({4, 9, 16}));
+                    "Spherical-harmonic moments of the scattering source per voxel of --method mdom: 4, 9, 16, 25 "
+                    "or 36 (default 16)")
+        ->check(CLI::IsMember({4, 9, 16, 25, 36}));
     sub->add_option("--noise", o->noise,
                     "--method path: sample each pixel until the standard error of its mean is at most this share of "
                     "it, up to --samples (0: always --samples)")

@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
     auto* ac = app.add_subcommand("accuracy", "Relative RMSE of ss and lbl or mdom against --method path");
     ac->add_option("--method", method, "The multiple-scattering method measured")->check(CLI::IsMember({"lbl", "mdom"}));
     ac->add_option("--directions", directions, "mdom's propagation directions swept")->delimiter(',');
-    ac->add_option("--moments", moments, "mdom's stored moments swept (4, 9, 16)")->delimiter(',');
+    ac->add_option("--moments", moments, "mdom's stored moments swept (4, 9, 16, 25, 36)")->delimiter(',');
     std::vector<double> light;
     ac->add_option("--light", light, "Position of the scene's first light, X,Y,Z")->delimiter(',')->expected(3);
     ac->add_option("--models", models, "Bundled models")->delimiter(',')->check(CLI::IsMember({"sphere", "bunny"}));

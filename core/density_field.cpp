@@ -99,20 +99,8 @@ double GridDensity::integrate(const Vec3& a, const Vec3& b) const {
     if (length == 0.0) return 0.0;
     // Clip the segment to the lattice box (slab test), in index space.
     const Vec3 ua = (a - bounds_.min) / cell_, ub = (b - bounds_.min) / cell_;
-    const Vec3 hi(nx_ - 1, ny_ - 1, nz_ - 1);
     double s0 = 0.0, s1 = 1.0;
-    for (int ax = 0; ax < 3; ++ax) {
-        const double d = ub[ax] - ua[ax];
-        if (d == 0.0) {
-            if (ua[ax] < 0.0 || ua[ax] > hi[ax]) return 0.0;
-            continue;
-        }
-        double e0 = (0.0 - ua[ax]) / d, e1 = (hi[ax] - ua[ax]) / d;
-        if (e0 > e1) std::swap(e0, e1);
-        s0 = std::max(s0, e0);
-        s1 = std::min(s1, e1);
-    }
-    if (s0 >= s1) return 0.0;
+    if (!clipToBox(Bounds3{Vec3(0.0), Vec3(nx_ - 1, ny_ - 1, nz_ - 1)}, ua, ub - ua, s0, s1)) return 0.0;
     // Collect every parameter where the segment crosses a lattice plane; between two
     // of them the trilinear field is a cubic in s, which Simpson's rule integrates exactly.
     thread_local std::vector<double> cuts;

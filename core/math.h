@@ -1,7 +1,9 @@
 #pragma once
 // Vector types and constants shared by every stage. Geometry runs in double
 // precision on the CPU; only the GPU path (later) drops to float.
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <glm/glm.hpp>
 
 namespace lucent {
@@ -32,6 +34,23 @@ struct Bounds3 {
                p.z <= max.z;
     }
 };
+
+// Clips [t0, t1] to the parameters at which origin + t dir lies in box (the
+// slab test); false when nothing is left. A zero component of dir keeps the
+// whole range if origin lies between that axis' planes, else nothing.
+inline bool clipToBox(const Bounds3& box, const Vec3& origin, const Vec3& dir, double& t0, double& t1) {
+    for (int a = 0; a < 3; ++a) {
+        if (dir[a] == 0.0) {
+            if (origin[a] < box.min[a] || origin[a] > box.max[a]) return false;
+            continue;
+        }
+        double lo = (box.min[a] - origin[a]) / dir[a], hi = (box.max[a] - origin[a]) / dir[a];
+        if (lo > hi) std::swap(lo, hi);
+        t0 = std::max(t0, lo);
+        t1 = std::min(t1, hi);
+    }
+    return t0 < t1;
+}
 
 // Henyey-Greenstein phase function, normalised over the sphere; g = 0 gives 1/(4 pi).
 // cosTheta is the cosine between the propagation directions of incident and scattered light.

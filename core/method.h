@@ -28,7 +28,7 @@ struct MethodSettings {
     uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
     int gridResolution = 64;       // grid methods: voxels along each object's longest side
     int directions = 48;           // discrete ordinates: propagation directions (24, 48, 80, 120, 168)
-    int moments = 16;              // discrete ordinates: spherical-harmonic moments stored per voxel (4, 9, 16)
+    int moments = 16;              // discrete ordinates: spherical-harmonic moments stored per voxel (4 ... 36)
 };
 
 class Method {

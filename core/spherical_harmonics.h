@@ -1,7 +1,7 @@
 #pragma once
 // Real spherical harmonics, orthonormal on the unit sphere, Condon-Shortley phase
 // included (the convention of google/spherical-harmonics and pbrt-v2, see
-// shared/reference-data/real_sh_l4.csv). "order" is the number of bands, so order L
+// tests/data/real_sh_l4.csv). "order" is the number of bands, so order L
 // has L*L coefficients; coefficient (l, m) sits at index l*l + l + m.
 #include <span>
 #include <vector>

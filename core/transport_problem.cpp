@@ -84,7 +84,7 @@ TransportProblem parseTransportProblemText(const std::string& text, const std::f
         Node s = root.child("solver");
         s.requireObject();
         if (s.has("directions")) p.directions = s.child("directions").integer(1, 100000);
-        if (s.has("bands")) p.bands = s.child("bands").integer(1, 4);
+        if (s.has("bands")) p.bands = s.child("bands").integer(1, 6);
         if (s.has("iterations")) p.maxIterations = s.child("iterations").integer(1, 100000);
         if (s.has("tolerance")) p.tolerance = s.child("tolerance").number(1e-9, 1.0);
         s.rejectUnknownKeys();

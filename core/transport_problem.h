@@ -28,7 +28,7 @@ struct TransportProblem {
     std::vector<Vec3> points;
     // solver
     int directions = 48;
-    int bands = 3;  // spherical-harmonic bands of the scattering source (M = bands^2 moments)
+    int bands = 4;  // spherical-harmonic bands of the scattering source (M = bands^2 moments)
     int maxIterations = 500;
     double tolerance = 1e-5;
 };

@@ -138,8 +138,7 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     stats.device = device.name();
     auto t0 = std::chrono::steady_clock::now();
     const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
-    const std::string what = "a " + std::to_string(shape.dims[0]) + "x" + std::to_string(shape.dims[1]) + "x" +
-                             std::to_string(shape.dims[2]) + " grid for object '" + object.desc().name + "'";
+    const std::string what = shape.describe(object.desc().name);
     const size_t voxels = shape.count();
     const int moments = s.bands * s.bands;
     device.checkMemory(bytesFor(shape.dims, s.directions, s.bands),
@@ -156,7 +155,7 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     grid.edges = Vec3(shape.voxel);
     grid.extinction.assign(voxels, glm::vec4(0.0f));
     grid.scattering.assign(voxels, glm::vec4(0.0f));
-    grid.phase.assign(voxels, glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f));
+    grid.phase.assign(voxels, glm::vec4(float(medium.g), 0.0f, 0.0f, 0.0f));
     std::vector<glm::vec4> trueExtinction(voxels, glm::vec4(0.0f));
     std::vector<cl_int> opaque(voxels, 0);
     for (size_t v = 0; v < voxels; ++v) {

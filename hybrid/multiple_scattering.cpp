@@ -40,8 +40,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
     stats.device = device.name();
     auto t0 = std::chrono::steady_clock::now();
     const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
-    const std::string what = "a " + std::to_string(shape.dims[0]) + "x" + std::to_string(shape.dims[1]) + "x" +
-                             std::to_string(shape.dims[2]) + " grid for object '" + object.desc().name + "'";
+    const std::string what = shape.describe(object.desc().name);
     const size_t voxels = shape.count();
     // Marching: material, refraction, two fixed-point deposits; lattice; rays are small.
     device.checkMemory(voxels * (2 * 16 + 2 * 24) + Lattice::bytesFor(voxels, s.blocked),

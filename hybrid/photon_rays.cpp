@@ -15,23 +15,6 @@ void basis(const Vec3& w, Vec3& u, Vec3& v) {
     v = glm::cross(w, u);
 }
 
-// Where origin + t dir enters the box (t >= 0), or false when it misses it.
-bool enterBox(const Bounds3& box, const Vec3& origin, const Vec3& dir, double& t) {
-    double t0 = 0.0, t1 = kInfinity;
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] == 0.0) {
-            if (origin[a] < box.min[a] || origin[a] > box.max[a]) return false;
-            continue;
-        }
-        double lo = (box.min[a] - origin[a]) / dir[a], hi = (box.max[a] - origin[a]) / dir[a];
-        if (lo > hi) std::swap(lo, hi);
-        t0 = std::max(t0, lo);
-        t1 = std::min(t1, hi);
-    }
-    t = t0;
-    return t0 < t1;
-}
-
 }  // namespace
 
 RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int count, uint64_t seed) {
@@ -68,8 +51,8 @@ RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int co
                     origin = centre - 2.0 * radius * w + radius * ((2.0 * a - 1.0) * u + (2.0 * b - 1.0) * v);
                     dir = w;
                 }
-                double t;
-                if (!enterBox(box, origin, dir, t)) continue;
+                double t = 0.0, exit = kInfinity;
+                if (!clipToBox(box, origin, dir, t, exit)) continue;  // t: where the ray enters the box
                 // Just inside the box, so the first step lands in a voxel of the grid.
                 const Vec3 start = origin + (t + 1e-4 * grid.voxel) * dir;
                 clshared::PhotonRay ray{};

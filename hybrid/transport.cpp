@@ -38,7 +38,7 @@ TransportResult solveTransport(const TransportProblem& p) {
                 const DeltaM dm = deltaM(in->g, p.bands);
                 grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 1.0f);
                 grid.scattering[v] = glm::vec4(glm::vec3(float((1.0 - dm.f) * in->sigmaS)), 0.0f);
-                grid.phase[v] = glm::vec4(float(dm.moments[1]), float(dm.moments[2]), float(dm.moments[3]), 0.0f);
+                grid.phase[v] = glm::vec4(float(in->g), 0.0f, 0.0f, 0.0f);
                 // An isotropic emission q / (4 pi) per unit length: its zero moment is q / sqrt(4 pi).
                 source[v * moments] = glm::vec4(glm::vec3(float(in->source / std::sqrt(4.0 * kPi))), 0.0f);
             }

@@ -4,6 +4,7 @@
 // (from 2x2x2 = 8 sub-samples per voxel), that share, and the refractive index
 // with its gradient, smoothed so that rays bend smoothly across the boundary.
 #include <array>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +25,11 @@ struct GridShape {
     size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
     Bounds3 bounds() const {
         return {origin, origin + voxel * Vec3(dims[0], dims[1], dims[2])};
+    }
+    // "a 64x48x40 grid for object 'NAME'", for messages.
+    std::string describe(const std::string& object) const {
+        return "a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+               " grid for object '" + object + "'";
     }
 };
 

@@ -4,12 +4,11 @@
 #include <cstdio>
 
 #include "hybrid/multiple_scattering.h"
-#include "runtime/ss_method.h"
 
 namespace lucent {
 
 std::vector<std::string> LblMethod::limitations(const LoadedScene& scene) const {
-    std::vector<std::string> out = SsMethod().limitations(scene);
+    std::vector<std::string> out = GridMethod::limitations(scene);
     for (const VolumeObject& o : scene.objects) {
         const MediumDesc& m = o.desc().medium;
         if (m.ior != 1.0)
@@ -25,8 +24,10 @@ std::vector<std::string> LblMethod::limitations(const LoadedScene& scene) const 
     return out;
 }
 
-Image LblMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
+std::vector<ScatteringGrid> LblMethod::solveGrids(const LoadedScene& scene, const MethodSettings& settings,
+                                                  std::string& device) {
     hybrid::MultipleScattering solver;
+    device = solver.deviceName();
     hybrid::HybridSettings hs;
     hs.resolution = settings.gridResolution;
     hs.seed = settings.seed;
@@ -41,10 +42,7 @@ Image LblMethod::render(const LoadedScene& scene, const MethodSettings& settings
                      object.desc().name.c_str(), d[0], d[1], d[2], stats.rays, stats.latticeSteps,
                      stats.converged ? "" : " (not converged)", stats.solveSeconds, stats.voxeliseSeconds);
     }
-    std::string backend;
-    Image image = renderSingleScattering(scene, settings, grids, backend);
-    servedBy_ = backend + " + OpenCL '" + solver.deviceName() + "'";
-    return image;
+    return grids;
 }
 
 }  // namespace lucent

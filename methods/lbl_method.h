@@ -1,21 +1,18 @@
 #pragma once
-// --method lbl: single scattering from the samples (as --method ss) plus the
-// light scattered twice or more, solved per object by the hybrid of thesis
-// chapter 4 on OpenCL (photon marching + Lattice-Boltzmann lighting, hybrid/)
-// and added by the runtime's view pass. Lives above both stages: the hybrid
-// never sees OpenGL and the runtime never sees OpenCL.
-#include "core/method.h"
+// --method lbl: single scattering plus the light scattered twice or more,
+// solved per object by the hybrid of thesis chapter 4 (photon marching +
+// Lattice-Boltzmann lighting, hybrid/multiple_scattering.h).
+#include "methods/grid_method.h"
 
 namespace lucent {
 
-class LblMethod final : public Method {
+class LblMethod final : public GridMethod {
 public:
-    Image render(const LoadedScene& scene, const MethodSettings& settings) override;
-    std::string servedBy() const override { return servedBy_; }
     std::vector<std::string> limitations(const LoadedScene& scene) const override;
 
 private:
-    std::string servedBy_;
+    std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,
+                                           std::string& device) override;
 };
 
 }  // namespace lucent

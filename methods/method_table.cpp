@@ -112,14 +112,15 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
         const long pixels = long(scene.camera.width) * scene.camera.height;
         if (pixels <= kPathAsFastPixels || !available("mdom"))
             return {"path", misses + ", and |g| " + gs +
-                                " is beyond what lbl's diffusion holds (33-137% from full transport measured at g 0.8)" +
+                                " is beyond what lbl's diffusion holds (33-137% from full transport measured at g 0.8, mdom 10-21%)" +
                                 (available("mdom") ? "; for an image this small the path tracer, which reaches " +
                                                          percent(kAutoGoal) + ", takes no longer than mdom"
                                                    : ": the path tracer is the only method built that reaches " +
                                                          percent(kAutoGoal))};
         return {"mdom", misses + ", and |g| " + gs +
-                            " is beyond what lbl's diffusion holds; mdom follows forward scattering (18-21% from full "
-                            "transport measured at g 0.8, 3% at g 0): --method path reaches " + percent(kAutoGoal) +
+                            " is beyond what lbl's diffusion holds; mdom follows forward scattering (10-21% from full "
+                            "transport measured at g 0.8, 3-6% up to g 0.4): --method path reaches " +
+                            percent(kAutoGoal) +
                             " but takes minutes for an image this large"};
     }
     if (available("lbl")) return {"lbl", misses + "; lbl adds it (within 3-8% measured)"};

@@ -48,10 +48,17 @@ size_t DomSolver::bytesFor(const std::array<int, 3>& d, int directions, int band
 DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands,
                      const BoundaryFlags& reflective)
     : grid_(grid), ordinates_(ordinatesFor(directions)), moments_(bands * bands) {
-    if (bands < 1 || bands > 4) throw Error("discrete ordinates: 1 to 4 bands of moments, not " + std::to_string(bands));
+    if (bands < 1 || bands > kMaxBands)
+        throw Error("discrete ordinates: 1 to " + std::to_string(kMaxBands) + " bands of moments, not " +
+                    std::to_string(bands));
     const int k = ordinates_.perOctant, n = 8 * k;
-    program_ = device.buildSource("#define DOM_K " + std::to_string(k) + "\n#define DOM_M " +
-                                      std::to_string(moments_) + "\n#line 1\n" + hybridKernel("dom_sweep.cl"),
+    // More moments than directions would be aliased: the directions cannot tell them apart.
+    if (moments_ > n)
+        throw Error("discrete ordinates: " + std::to_string(moments_) + " moments need at least as many directions, not " +
+                    std::to_string(n));
+    program_ = device.buildSource("#define DOM_K " + std::to_string(k) + "\n#define DOM_BANDS " +
+                                      std::to_string(bands) + "\n#define DOM_M " + std::to_string(moments_) +
+                                      "\n#line 1\n" + hybridKernel("dom_sweep.cl"),
                                   "dom_sweep.cl");
     sweep_ = cl::Kernel(program_, "dom_sweep");
     scatter_ = cl::Kernel(program_, "dom_scatter");

@@ -23,7 +23,7 @@ struct DomGrid {
     std::vector<glm::vec4> extinction;  // sigma_t* (delta-M scaled), rgb; a: 1 where the flux is wanted, else 0
                                         // (a voxel with a = 0 must have no source)
     std::vector<glm::vec4> scattering;  // sigma_s*, rgb
-    std::vector<glm::vec4> phase;       // g*_1, g*_2, g*_3 of the scaled phase function
+    std::vector<glm::vec4> phase;       // x: Henyey-Greenstein g (truncated by delta-M to the bands stored)
     size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
 };
 
@@ -32,7 +32,8 @@ using BoundaryFlags = std::array<bool, 6>;
 
 class DomSolver {
 public:
-    // bands: spherical-harmonic bands stored (1 to 4: M = bands^2 moments).
+    static constexpr int kMaxBands = 6;
+    // bands: spherical-harmonic bands stored (1 to kMaxBands: M = bands^2 moments).
     // reflective: faces that mirror the light leaving them back in (with one
     // iteration's delay); the others are vacuum.
     DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective);

@@ -1,5 +1,6 @@
 // The discrete ordinates solver of thesis 5.3 on the device. Built with
-//   DOM_K: directions per octant (N / 8), DOM_M: stored moments.
+//   DOM_K: directions per octant (N / 8), DOM_BANDS: spherical-harmonic bands
+//   stored, DOM_M = DOM_BANDS^2 moments.
 // Radiance sources and fluxes are kept as real spherical-harmonic moments per
 // voxel, rgb in a float4 ([voxel][moment]): the source towards direction n is
 // sum_m source_m Y_m(omega_n), and the flux moments are
@@ -142,15 +143,20 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
 // (the host then clears a fresh flux buffer for the next sweeps and keeps this one).
 kernel void dom_scatter(global const float4* flux, global float4* total, global float4* source,
                         global const float4* scattering,  // sigma_s* per voxel
-                        global const float4* phase) {     // g*_1, g*_2, g*_3 per voxel
+                        global const float4* phase) {     // x: Henyey-Greenstein g per voxel
     const size_t v = get_global_id(0);
-    const float4 sigma = scattering[v], ph = phase[v];
-    for (int m = 0; m < DOM_M; ++m) {
-        const size_t at = v * DOM_M + m;
-        const float g = m == 0 ? 1.0f : m < 4 ? ph.x : m < 9 ? ph.y : ph.z;
-        const float4 f = flux[at];
-        total[at] += f;
-        source[at] = sigma * g * f;
+    const float4 sigma = scattering[v];
+    // The delta-M moments g*_l = (g^l - f) / (1 - f), f = g^DOM_BANDS (0 for g <= 0).
+    const float g = phase[v].x, f = g > 0.0f ? pown(g, DOM_BANDS) : 0.0f;
+    float gl = 1.0f, moment = 1.0f;
+    for (int l = 0, m = 0; l < DOM_BANDS; ++l, gl *= g) {
+        moment = l == 0 ? 1.0f : (gl - f) / (1.0f - f);
+        for (int k = 0; k < 2 * l + 1; ++k, ++m) {
+            const size_t at = v * DOM_M + m;
+            const float4 phi = flux[at];
+            total[at] += phi;
+            source[at] = sigma * moment * phi;
+        }
     }
 }
 

@@ -35,7 +35,7 @@ TEST(SphericalHarmonics, MatchesClosedFormsUpToBand2) {
 }
 
 TEST(SphericalHarmonics, MatchesPublishedValuesUpToBand4) {
-    // shared/reference-data/real_sh_l4.csv, 'eval' rows, from google/spherical-harmonics.
+    // tests/data/real_sh_l4.csv, 'eval' rows: google/spherical-harmonics, sh/spherical_harmonics.cc.
     const auto rows = test::readCsv(test::dataDir() / "real_sh_l4.csv");
     std::vector<double> basis(25);
     int checked = 0;
@@ -73,7 +73,7 @@ TEST(SphericalHarmonics, OrthonormalUnderQuadrature) {
 }
 
 TEST(SphericalHarmonics, ClampedCosineProjectionMatchesPublishedZonalCoefficients) {
-    // shared/reference-data/sh_projections_clamped_cosine_delta.csv (pbrt-v2, exact values).
+    // tests/data/sh_projections_clamped_cosine_delta.csv (pbrt-v2, exact values).
     const int order = 9;
     std::vector<double> coefficients(order * order, 0.0), basis(order * order);
     const auto dirs = fibonacciSphere(200000);

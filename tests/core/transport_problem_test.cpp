@@ -44,7 +44,7 @@ TEST(TransportProblem, RefusesWhatIsNotAProblem) {
         {problem(R"({"min": [0, 0, 0], "max": [0, 1, 1], "sigma_t": 1})"), "/regions/0: min must be below max"},
         {problem(R"({"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1, "g": 1})"), "/regions/0/g: must lie in"},
         {problem(region, R"(, "boundary": {"x-": "periodic"})"), "/boundary/x-: must be \"vacuum\" or \"reflective\""},
-        {problem(region, R"(, "solver": {"bands": 5})"), "/solver/bands: must lie in [1, 4]"},
+        {problem(region, R"(, "solver": {"bands": 7})"), "/solver/bands: must lie in [1, 6]"},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1024, 1024, 1024]}, "regions": [],
             "points": [[0.5, 0.5, 0.5]]})", "/domain/cells: asks for more than 2^24 cells"},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]}, "regions": [],

@@ -1,0 +1,31 @@
+#pragma once
+// The shape lbl and mdom share: single scattering from the samples, exactly as
+// --method ss draws it, plus per object a grid of the light scattered twice or
+// more, solved by a hybrid of hybrid/ on OpenCL and added by the runtime's view
+// pass. A subclass solves the grids; this draws them. Lives above both stages:
+// the hybrid never sees OpenGL and the runtime never sees OpenCL.
+#include <string>
+#include <vector>
+
+#include "core/method.h"
+#include "core/scattering_grid.h"
+
+namespace lucent {
+
+class GridMethod : public Method {
+public:
+    Image render(const LoadedScene& scene, const MethodSettings& settings) final;
+    std::string servedBy() const final { return servedBy_; }
+    std::vector<std::string> limitations(const LoadedScene& scene) const override;
+
+protected:
+    // One grid per object of the scene, in order, each reported on one line;
+    // device receives the OpenCL device's name.
+    virtual std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,
+                                                   std::string& device) = 0;
+
+private:
+    std::string servedBy_;
+};
+
+}  // namespace lucent
