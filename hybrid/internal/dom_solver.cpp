@@ -30,9 +30,9 @@ cl_int4 int4Of(const std::array<int, 3>& d) { return {{d[0], d[1], d[2], 0}}; }
 
 size_t DomSolver::faceOffset(int face, const std::array<int, 3>& d, int directions) {
     const size_t cells[3] = {size_t(d[1]) * d[2], size_t(d[0]) * d[2], size_t(d[0]) * d[1]};
-    size_t off = 0;
-    for (int a = 0; a < face / 2; ++a) off += 2 * cells[a];
-    return (off + (face & 1) * cells[face / 2]) * directions;
+    size_t off = 0;  // face 6: the end of the last face, the size of them all
+    for (int f = 0; f < face; ++f) off += cells[f / 2];
+    return off * directions;
 }
 
 size_t DomSolver::largestBufferFor(size_t voxels, int bands) { return voxels * bands * bands * sizeof(glm::vec4); }

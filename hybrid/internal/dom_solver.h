@@ -77,6 +77,7 @@ public:
     // The out-going radiance (rgb) of the last iteration on every face, [face cells][N]
     // face by face (x-, x+, y-, y+, z-, z+).
     std::vector<glm::vec4> boundaryRadiance(cl::CommandQueue& queue);
+    // Where face 0-5's cells start in the boundary radiance; face 6 gives the total.
     static size_t faceOffset(int face, const std::array<int, 3>& dims, int directions);
 
 private:

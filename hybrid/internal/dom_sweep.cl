@@ -23,8 +23,8 @@ inline float4 psi(float4 x, float4 t) {
 inline int faceOffset(int f, int4 d) {
     const int cells[3] = {d.y * d.z, d.x * d.z, d.x * d.y};
     int off = 0;
-    for (int a = 0; a < f / 2; ++a) off += 2 * cells[a];
-    return (off + (f & 1) * cells[f / 2]) * 8 * DOM_K;
+    for (int g = 0; g < f; ++g) off += cells[g / 2];
+    return off * 8 * DOM_K;
 }
 
 // One launch of an octant's sweep: the lines of voxels along x at (j, k) with
