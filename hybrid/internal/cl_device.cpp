@@ -1,5 +1,6 @@
 #include "hybrid/internal/cl_device.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/error.h"
@@ -111,6 +112,11 @@ cl::Program ClDevice::build(const std::vector<std::string>& files) const {
         what += (what.empty() ? "" : ", ") + f;
     }
     return buildSource(source, what);
+}
+
+cl::Buffer zeroBuffer(const cl::Context& context, size_t bytes) {
+    std::vector<char> zeros(std::max<size_t>(bytes, 16), 0);
+    return cl::Buffer(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(), zeros.data());
 }
 
 void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string& what) const {

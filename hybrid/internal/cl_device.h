@@ -44,6 +44,9 @@ public:
     cl::CommandQueue marchQueue, latticeQueue;
 };
 
+// A read-write buffer of `bytes` zeros (at least 16: OpenCL refuses empty buffers).
+cl::Buffer zeroBuffer(const cl::Context& context, size_t bytes);
+
 // "CL_OUT_OF_RESOURCES (-5)" and the like.
 std::string clErrorText(cl_int code);
 

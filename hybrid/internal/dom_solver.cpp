@@ -13,11 +13,6 @@ namespace {
 
 constexpr int kPartials = 1024;
 
-cl::Buffer zeroBuffer(const cl::Context& cx, size_t bytes) {
-    std::vector<char> zeros(std::max<size_t>(bytes, 16), 0);
-    return cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(), zeros.data());
-}
-
 template <typename T>
 cl::Buffer constBuffer(const cl::Context& cx, const std::vector<T>& values) {
     return cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(values.size(), 1) * sizeof(T),
@@ -145,18 +140,6 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
     std::swap(flux_, lastFlux_);
     queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
-    Rgb sum(0.0);
-    for (int i = 0; i < kPartials; ++i)
-        for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];
-    return sum;
-}
-
-Rgb DomSolver::totalPower(cl::CommandQueue& queue) {
-    power_.setArg(0, total_);
-    power_.setArg(1, partial_);
-    power_.setArg(2, cl_int(grid_.count()));
-    queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
-    std::vector<glm::vec4> partial = read(queue, partial_, kPartials);
     Rgb sum(0.0);
     for (int i = 0; i < kPartials; ++i)
         for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];

@@ -50,8 +50,6 @@ public:
     // flux added to the total and scattered into the next source. Returns the
     // generation's summed zero moments per channel (how much light it carried).
     Rgb iterate(cl::CommandQueue& queue);
-    // The total's zero moments summed, per channel.
-    Rgb totalPower(cl::CommandQueue& queue);
     // Adds factor[c] times the last generation's flux to the total (the
     // geometric tail of the generations still to come).
     void addTail(cl::CommandQueue& queue, const Rgb& factor);

@@ -7,11 +7,6 @@ namespace lucent::hybrid {
 namespace {
 cl_float4 float4Of(const Rgb& c) { return {{float(c.r), float(c.g), float(c.b), 0.0f}}; }
 constexpr size_t kInterfaceFloat4PerBlock = 6 * 16;
-
-cl::Buffer zeroBuffer(const cl::Context& cx, size_t bytes) {
-    std::vector<char> zeros(bytes, 0);
-    return cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, std::max<size_t>(bytes, 16), zeros.data());
-}
 }  // namespace
 
 size_t Lattice::bytesFor(size_t voxels, bool blocked) {
