@@ -64,16 +64,6 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     return g;
 }
 
-namespace {
-
-double seconds(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-cl_float4 float4Of(const Vec3& v, double w) { return {{float(v.x), float(v.y), float(v.z), float(w)}}; }
-
-}  // namespace
-
 struct MdomProgress::Impl {
     ClDevice& device;
     MdomSettings settings;
@@ -105,7 +95,7 @@ bool MdomProgress::iterate() {
     p.stats.iterations = run.iterations;
     p.stats.converged = run.converged;
     p.stats.ratio = run.ratio;
-    p.stats.sweepSeconds += seconds(t0);
+    p.stats.sweepSeconds += secondsSince(t0);
     return !p.stats.converged && p.stats.iterations < p.settings.maxIterations;
 }
 
@@ -144,7 +134,7 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     device.checkMemory(bytesFor(shape.dims, s.directions, s.bands),
                        DomSolver::largestBufferFor(voxels, s.bands), what);
     const Voxelisation vox = voxelise(object, s.resolution);
-    stats.voxeliseSeconds = seconds(t0);
+    stats.voxeliseSeconds = secondsSince(t0);
     t0 = std::chrono::steady_clock::now();
 
     // The scaled medium (delta-M): sigma_t* = sigma_t - f sigma_s, sigma_s* = (1 - f) sigma_s.
@@ -228,7 +218,7 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
                         }
             }
         }
-        stats.directSeconds = seconds(t0);
+        stats.directSeconds = secondsSince(t0);
         auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
         MdomSolution& solution = progress->solution;
         solution.bounds = shape.bounds();

@@ -25,10 +25,6 @@ std::string MultipleScattering::deviceName() const { return impl_->device.name()
 
 namespace {
 
-double seconds(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
 double maxOf(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
 }  // namespace
@@ -46,7 +42,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
     device.checkMemory(voxels * (2 * 16 + 2 * 24) + Lattice::bytesFor(voxels, s.blocked),
                        Lattice::largestBufferFor(voxels), what);
     const Voxelisation grid = voxelise(object, s.resolution);
-    stats.voxeliseSeconds = seconds(t0);
+    stats.voxeliseSeconds = secondsSince(t0);
     t0 = std::chrono::steady_clock::now();
 
     const Rgb albedo = object.desc().medium.albedo;
@@ -86,7 +82,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
                 ++stats.marchLaunches;
                 if (!s.concurrent) {
                     mq.finish();
-                    stats.marchSeconds += seconds(marchStart);
+                    stats.marchSeconds += secondsSince(marchStart);
                 }
             }
             if (i > 0) {
@@ -137,7 +133,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
         stats.latticeInFlight = lt.inFlight;
         stats.injected = lt.absorbed + lt.escaped + lt.inFlight;
         ScatteringGrid out = lattice.finish(lq);
-        stats.solveSeconds = seconds(t0);
+        stats.solveSeconds = secondsSince(t0);
         if (statsOut) *statsOut = stats;
         return out;
     } catch (const cl::Error& e) {

@@ -5,7 +5,6 @@
 namespace lucent::hybrid {
 
 namespace {
-cl_float4 float4Of(const Rgb& c) { return {{float(c.r), float(c.g), float(c.b), 0.0f}}; }
 constexpr size_t kInterfaceFloat4PerBlock = 6 * 16;
 }  // namespace
 

@@ -4,10 +4,6 @@
 
 namespace lucent::hybrid {
 
-namespace {
-cl_float4 float4Of(const Rgb& c) { return {{float(c.r), float(c.g), float(c.b), 0.0f}}; }
-}  // namespace
-
 PhotonMarcher::PhotonMarcher(const ClDevice& device, const cl::Program& program, const Voxelisation& grid,
                              const Rgb& albedo, const RayMap& rays, double step)
     : march_(program, "march"), transfer_(program, "transfer"), rayCount_(rays.rays.size()),
