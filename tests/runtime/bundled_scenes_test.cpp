@@ -1,30 +1,30 @@
 // Every bundled scene, --method ss --no-surface at the default quality, against
-// --method reference. The bounds sit above the errors measured at 10k, 20k and
-// 40k samples (docs/accuracy.md, 128x128): the published scheme's weaknesses show
-// most at density jumps (layered cube) and shadow edges of blockers (torus cube).
+// --method reference, held to ss's goal for the scene's optical radius
+// (tests/runtime/ss_goal.h, docs/accuracy.md): the goal, not a measured value.
 #include <gtest/gtest.h>
 
 #include "core/image_compare.h"
 #include "core/sample_set.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
+#include "tests/runtime/ss_goal.h"
 #include "tests/runtime/ss_helper.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
 namespace {
 
-struct Bound {
+struct Case {
     const char* scene;
-    double relativeRmse, meanAbsoluteRelativeError;
+    double goal;  // typed from docs/accuracy.md's table, checked against ss_goal.h below
 };
 
-class BundledScene : public ::testing::TestWithParam<Bound> {};
+class BundledScene : public ::testing::TestWithParam<Case> {};
 
-TEST_P(BundledScene, AgreesWithTheReference) {
-    const Bound bound = GetParam();
+TEST_P(BundledScene, MeetsTheGoalOfItsOpticalRadius) {
+    const Case c = GetParam();
     test::ScratchDir dir;
-    SceneDesc scene = parseScene(test::modelsDir() / (std::string(bound.scene) + ".json"));
+    SceneDesc scene = parseScene(test::modelsDir() / (std::string(c.scene) + ".json"));
     scene.camera.width = scene.camera.height = 128;
     for (auto& o : scene.objects) o.samples = dir.path() / o.samples.filename();  // keep models/ clean
     std::vector<std::string> warnings;
@@ -36,17 +36,16 @@ TEST_P(BundledScene, AgreesWithTheReference) {
     reference.surface = false;
     const ImageError e = compareImages(test::renderSs(scene, false),
                                        ReferenceRenderer(scene, objects).render(reference));
-    std::printf("%s: relative RMSE %.4f, MARE %.4f, mean ratio %.4f\n", bound.scene, e.relativeRmse,
+    std::printf("%s: relative RMSE %.4f, MARE %.4f, mean ratio %.4f\n", c.scene, e.relativeRmse,
                 e.meanAbsoluteRelativeError, e.meanRatio);
+    ASSERT_EQ(test::ssGoalRelativeRmse(objects), c.goal) << "the scene's optical radius changed class";
     EXPECT_GT(e.pixels, 1000u);
-    EXPECT_LT(e.relativeRmse, bound.relativeRmse);
-    EXPECT_LT(e.meanAbsoluteRelativeError, bound.meanAbsoluteRelativeError);
-    EXPECT_NEAR(e.meanRatio, 1.0, 0.15);
+    EXPECT_LT(e.relativeRmse, c.goal);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, BundledScene,
-                         ::testing::Values(Bound{"cube", 0.075, 0.10}, Bound{"torus-cube", 0.12, 0.17},
-                                           Bound{"layered-cube", 0.14, 0.13}, Bound{"bunny", 0.13, 0.12}),
+                         ::testing::Values(Case{"cube", 0.10}, Case{"torus-cube", 0.10},
+                                           Case{"layered-cube", 0.25}, Case{"bunny", 0.25}),
                          [](const auto& info) {
                              std::string name = info.param.scene;
                              name.erase(std::remove(name.begin(), name.end(), '-'), name.end());

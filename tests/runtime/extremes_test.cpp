@@ -128,7 +128,7 @@ Case sphere(double sigmaT) {
 
 TEST(Extremes, VanishingExtinction) {
     // 1500 samples: the bounds are those of that count (docs/accuracy.md), wider than at the default.
-    EXPECT_NEAR(checkedRatio(sphere(1e-6)), 1.0, 0.1);
+    EXPECT_NEAR(checkedRatio(sphere(1e-6)), 1.0, 0.05);  // the goal of optical radii under 0.5
 }
 
 TEST(Extremes, EnormousExtinction) {
