@@ -20,6 +20,7 @@ Command addInfoCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addTransportCommand(CLI::App& app);
+Command addPresetsCommand(CLI::App& app);
 
 // A number in [lo, hi] and finite: CLI::Range lets NaN through, since every
 // comparison with NaN is false.

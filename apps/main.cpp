@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "lucent 0.1.0");
     std::map<CLI::App*, lucent::Command> commands;
     for (auto add : {lucent::addPreprocessCommand, lucent::addRenderCommand, lucent::addViewCommand, lucent::addInfoCommand,
-                     lucent::addBenchCommand, lucent::addTransportCommand}) {
+                     lucent::addBenchCommand, lucent::addTransportCommand, lucent::addPresetsCommand}) {
         const size_t before = app.get_subcommands({}).size();
         lucent::Command run = add(app);
         commands[app.get_subcommands({})[before]] = std::move(run);

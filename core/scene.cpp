@@ -1,6 +1,8 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -9,6 +11,7 @@
 #include "core/input_file.h"
 #include "core/internal/json_node.h"
 #include "core/limits.h"
+#include "core/medium_presets.h"
 
 namespace lucent {
 namespace {
@@ -91,11 +94,32 @@ DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
     return d;
 }
 
-MediumDesc parseMedium(Node n, const std::filesystem::path& sceneFile) {
+// The scene's length unit: what "units" says, or none (coefficients per scene unit).
+struct Units {
+    std::string name;
+    std::optional<double> millimetres;  // per scene unit
+};
+
+// A preset gives sigma_t, albedo and g from published coefficients (per mm,
+// converted to the scene's unit); explicit keys beside it override them.
+MediumDesc parseMedium(Node n, const std::filesystem::path& sceneFile, const Units& units) {
     n.requireObject();
     MediumDesc m;
-    m.sigmaT = n.child("sigma_t").rgb(0.0, kMaxMagnitude);
-    m.albedo = n.child("albedo").rgb(0.0, 1.0);
+    const bool preset = n.has("preset");
+    if (preset) {
+        Node name = n.child("preset");
+        const MediumPreset* p = findMediumPreset(name.string());
+        if (!p) name.fail("unknown preset '" + name.string() + "' (valid: " + mediumPresetNames() + ")");
+        if (!units.millimetres)
+            name.fail("a preset needs the scene's top-level \"units\" (\"mm\", \"cm\" or \"m\"): its coefficients "
+                      "are published per mm");
+        m.sigmaT = p->sigmaT() * *units.millimetres;
+        m.albedo = p->albedo();
+        m.g = std::clamp(p->meanG(), -0.999, 0.999);
+    }
+    if (!preset || n.has("sigma_t")) m.sigmaT = n.child("sigma_t").rgb(0.0, kMaxMagnitude);
+    if (!preset || n.has("albedo")) m.albedo = n.child("albedo").rgb(0.0, 1.0);
+    if (std::max({m.sigmaT.r, m.sigmaT.g, m.sigmaT.b}) > kMaxMagnitude) n.fail("the preset's sigma_t in these units exceeds 1e30");
     if (n.has("g")) m.g = n.child("g").number(-0.999, 0.999);
     if (n.has("ior")) m.ior = n.child("ior").number(1.0, 4.0);
     if (n.has("density")) m.density = parseDensity(n.child("density"), sceneFile);
@@ -118,14 +142,14 @@ SurfaceDesc parseSurface(Node n) {
     return s;
 }
 
-ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile) {
+ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Units& units) {
     n.requireObject();
     ObjectDesc o;
     const std::string mesh = n.child("mesh").string();
     o.mesh = resolve(sceneFile, mesh);
     o.name = n.has("name") ? n.child("name").string() : o.mesh.filename().string();
     Node medium = n.child("medium");
-    o.medium = parseMedium(medium, sceneFile);
+    o.medium = parseMedium(medium, sceneFile, units);
     if (n.has("surface")) o.surface = parseSurface(n.child("surface"));
     o.samples = resolve(sceneFile, n.child("samples").string());
     n.rejectUnknownKeys();
@@ -134,6 +158,7 @@ ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile) {
     for (const auto& b : o.medium.blockers) fp.addFile(b);
     if (o.medium.density.type == DensityDesc::Type::Grid) fp.addFile(o.medium.density.file);
     fp.addText(medium.json().dump());
+    if (medium.json().contains("preset")) fp.addText("units " + units.name);  // the preset's coefficients depend on them
     o.fingerprint = fp.value();
     return o;
 }
@@ -160,6 +185,14 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     root.requireObject();
     SceneDesc scene;
     scene.file = file;
+    Units units;
+    if (root.has("units")) {
+        Node u = root.child("units");
+        units.name = u.string();
+        units.millimetres = millimetresPerUnit(units.name);
+        if (!units.millimetres) u.fail("unknown unit '" + units.name + "' (valid: mm, cm, m)");
+    }
+    scene.units = units.name;
     scene.camera = parseCamera(root.child("camera"));
     Node lights = root.child("lights");
     if (lights.arraySize() > kMaxLights)
@@ -168,7 +201,7 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     for (size_t i = 0; i < lights.arraySize(); ++i) scene.lights.push_back(parseLight(lights.element(i)));
     Node objects = root.child("objects");
     if (objects.arraySize() == 0) objects.fail("must hold at least one object");
-    for (size_t i = 0; i < objects.arraySize(); ++i) scene.objects.push_back(parseObject(objects.element(i), file));
+    for (size_t i = 0; i < objects.arraySize(); ++i) scene.objects.push_back(parseObject(objects.element(i), file, units));
     if (root.has("render")) scene.render = parseRender(root.child("render"));
     root.rejectUnknownKeys();
     return scene;

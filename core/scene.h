@@ -64,6 +64,7 @@ struct RenderDesc {
 
 struct SceneDesc {
     std::filesystem::path file;
+    std::string units;  // "mm", "cm", "m", or empty: lengths and coefficients per scene unit
     Camera camera;
     std::vector<Light> lights;
     std::vector<ObjectDesc> objects;

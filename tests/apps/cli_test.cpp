@@ -467,3 +467,43 @@ TEST(Cli, PreprocessAndInfoAgreeOnTheLayerCount) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// `lucent presets` lists every measured material with its published numbers, and
+// a scene in centimetres that names one renders as the same scene given marble's
+// coefficients per cm by hand (Jensen 2001: sigma_s' + sigma_a per mm, times 10).
+TEST(Cli, PresetsAreListedAndAScaleInCentimetresRendersWithOne) {
+    const auto list = test::runLucent("presets");
+    ASSERT_EQ(list.exitCode, 0) << list.stderrText;
+    EXPECT_EQ(std::count(list.stdoutText.begin(), list.stdoutText.end(), '\n'), 1 + 12 + 35);
+    EXPECT_NE(list.stdoutText.find("marble"), std::string::npos);
+    EXPECT_NE(list.stdoutText.find("2.19 2.62 3"), std::string::npos) << "marble's sigma_s'";
+    EXPECT_NE(list.stdoutText.find("0.932 0.902 0.859"), std::string::npos) << "lowfat milk's g";
+
+    test::ScratchDir dir;
+    const std::string mesh = (test::modelsDir() / "sphere.obj").string();
+    std::string preset = scene(mesh, R"("preset": "marble")");
+    preset.insert(1, R"("units": "cm", )");
+    const std::string byHand = scene(mesh, R"("sigma_t": [21.921, 26.241, 30.071],
+        "albedo": [0.999042014506637, 0.998437559544225, 0.99763892121978])");
+    auto render = [&](const std::string& name, const std::string& text) {
+        const auto file = dir.write(name + ".json", text);
+        const auto run = test::runLucent("render " + file.string() + " -o " + (dir.path() / (name + ".pfm")).string() +
+                                         " --method reference --width 8 --height 8");
+        EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+        return readPfm(dir.path() / (name + ".pfm"));
+    };
+    const Image a = render("preset", preset), b = render("by-hand", byHand);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    double sum = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.pixels[i][c], b.pixels[i][c], 1e-5 * b.pixels[i][c]) << i;
+        sum += b.pixels[i].r;
+    }
+    EXPECT_GT(sum, 0.0);
+}
+
+}  // namespace
+}  // namespace lucent
