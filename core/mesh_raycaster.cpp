@@ -185,7 +185,6 @@ bool MeshRaycaster::contains(const Vec3& p) const {
     return votes >= 2;
 }
 
-Vec3 MeshRaycaster::unitNormal(uint32_t face) const { return glm::normalize(tree_->normal[face]); }
 
 Vec3 MeshRaycaster::closestPoint(const Vec3& p) const {
     std::call_once(tree_->distanceTreeBuilt, [this] {

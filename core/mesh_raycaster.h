@@ -44,7 +44,6 @@ public:
     double distanceToSurface(const Vec3& p) const;
     Vec3 closestPoint(const Vec3& p) const;  // on the surface
     const Bounds3& bounds() const { return bounds_; }
-    Vec3 unitNormal(uint32_t face) const;
 
 private:
     struct Tree;

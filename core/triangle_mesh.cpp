@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -29,6 +30,51 @@ Bounds3 TriangleMesh::bounds() const {
 Vec3 TriangleMesh::faceNormal(size_t face) const {
     const auto& t = triangles[face];
     return glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+}
+
+std::vector<std::array<Vec3, 3>> cornerNormals(const TriangleMesh& mesh) {
+    const size_t faces = mesh.triangles.size();
+    std::vector<Vec3> unit(faces);
+    for (size_t f = 0; f < faces; ++f) {
+        const Vec3 n = mesh.faceNormal(f);
+        const double length = glm::length(n);
+        unit[f] = length > 0.0 ? n / length : Vec3(0.0);
+    }
+    // The faces around each vertex, in compressed rows.
+    std::vector<uint32_t> start(mesh.positions.size() + 1, 0), around(3 * faces);
+    for (const auto& t : mesh.triangles)
+        for (uint32_t v : t) ++start[v + 1];
+    for (size_t v = 0; v < mesh.positions.size(); ++v) start[v + 1] += start[v];
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t f = 0; f < faces; ++f)
+        for (uint32_t v : mesh.triangles[f]) around[fill[v]++] = uint32_t(f);
+
+    const double cosCrease = std::cos(kCreaseDegrees * kPi / 180.0);
+    std::vector<std::array<Vec3, 3>> corners(faces);
+    for (size_t f = 0; f < faces; ++f)
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t v = mesh.triangles[f][c];
+            Vec3 sum(0.0);
+            for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+                if (glm::dot(unit[around[i]], unit[f]) >= cosCrease) sum += mesh.faceNormal(around[i]);
+            const double length = glm::length(sum);
+            corners[f][c] = length > 0.0 ? sum / length : unit[f];
+        }
+    return corners;
+}
+
+Vec3 interpolatedNormal(const TriangleMesh& mesh, const std::array<Vec3, 3>& corners, size_t face, const Vec3& p) {
+    const auto& t = mesh.triangles[face];
+    const Vec3 a = mesh.positions[t[0]], e1 = mesh.positions[t[1]] - a, e2 = mesh.positions[t[2]] - a;
+    const Vec3 n = glm::cross(e1, e2);
+    const double area2 = glm::dot(n, n);
+    if (!(area2 > 0.0)) return corners[0];
+    // Barycentric coordinates of p projected onto the face's plane.
+    const Vec3 d = p - a;
+    const double b1 = glm::dot(glm::cross(d, e2), n) / area2, b2 = glm::dot(glm::cross(e1, d), n) / area2;
+    const Vec3 sum = (1.0 - b1 - b2) * corners[0] + b1 * corners[1] + b2 * corners[2];
+    const double length = glm::length(sum);
+    return length > 0.0 ? sum / length : glm::normalize(n);
 }
 
 double TriangleMesh::signedVolume() const {

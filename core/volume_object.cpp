@@ -23,7 +23,7 @@ std::unique_ptr<DensityField> makeDensity(const DensityDesc& d, const Bounds3& o
 }  // namespace
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : desc_(desc), mesh_(loadClosedMesh(desc.mesh, warnings)), boundary_(mesh_) {
+    : desc_(desc), mesh_(loadClosedMesh(desc.mesh, warnings)), boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
     density_ = makeDensity(desc.medium.density, mesh_.bounds());
     // sigma_t times the density is what the sample file and the GPU store, in single precision.
     const double peak = std::max({desc.medium.sigmaT.r, desc.medium.sigmaT.g, desc.medium.sigmaT.b}) * density_->maximum();

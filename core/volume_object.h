@@ -33,6 +33,11 @@ public:
     double densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
 
     bool contains(const Vec3& p) const { return boundary_.contains(p); }
+    // The shading normal at p on the boundary's face: the runtime's, interpolated
+    // from the corners (core/triangle_mesh.h).
+    Vec3 shadingNormal(uint32_t face, const Vec3& p) const {
+        return interpolatedNormal(mesh_, cornerNormals_[face], face, p);
+    }
     const std::vector<TriangleMesh>& blockerMeshes() const { return blockerMeshes_; }
     bool insideBlocker(const Vec3& p) const;
     // The nearest point of the region p lies in: the boundary, a blocker's surface
@@ -49,6 +54,7 @@ private:
     ObjectDesc desc_;
     TriangleMesh mesh_;
     MeshRaycaster boundary_;
+    std::vector<std::array<Vec3, 3>> cornerNormals_;
     std::unique_ptr<DensityField> density_;
     std::vector<MeshRaycaster> blockers_;
     std::vector<TriangleMesh> blockerMeshes_;

@@ -135,8 +135,9 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const Pa
             o.boundary().crossings(origin, dir, crossings);
             if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
                 nearest = crossings.front().t;
-                total = phongSurfaceReflection(*o.desc().surface, scene_.lights, origin + nearest * dir,
-                                               o.boundary().unitNormal(crossings.front().face), dir);
+                const Vec3 hit = origin + nearest * dir;
+                total = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
+                                               o.shadingNormal(crossings.front().face, hit), dir);
             }
         }
         total = masked(total, channel);

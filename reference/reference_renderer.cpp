@@ -127,8 +127,9 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
             o.boundary().crossings(origin, dir, cs);
             if (!cs.empty() && !cs.front().exits && cs.front().t < std::min(nearestSurface, tStop)) {
                 nearestSurface = cs.front().t;
-                surface = phongSurfaceReflection(*o.desc().surface, scene_.lights, origin + cs.front().t * dir,
-                                                 o.boundary().unitNormal(cs.front().face), dir);
+                const Vec3 hit = origin + cs.front().t * dir;
+                surface = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
+                                                 o.shadingNormal(cs.front().face, hit), dir);
             }
         }
     }

@@ -1,5 +1,5 @@
 #pragma once
-// A triangle mesh on the GPU (positions and smooth normals) that the passes draw:
+// A triangle mesh on the GPU (positions and shading normals, core/triangle_mesh.h) that the passes draw:
 // an object's boundary or one of its blockers.
 #include "core/triangle_mesh.h"
 #include "runtime/gl.h"
@@ -15,8 +15,8 @@ public:
     void draw() const;
 
 private:
-    GLuint vao_ = 0, buffers_[2] = {0, 0};
-    GLsizei indexCount_ = 0;
+    GLuint vao_ = 0, buffer_ = 0;
+    GLsizei vertexCount_ = 0;
 };
 
 }  // namespace lucent

@@ -141,3 +141,39 @@ TEST(TriangleMesh, BundledModelsAreClosed) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// Shading normals: sharp across a cube's 90-degree edges (every corner normal
+// is its face's), smooth on a sphere (nearer the exact radial normal than the
+// flat face normal, everywhere on each face we probe).
+TEST(ShadingNormals, SharpAcrossCreasesAndSmoothElsewhere) {
+    std::vector<std::string> warnings;
+    const TriangleMesh cube = loadClosedMesh(test::modelsDir() / "cube.obj", warnings);
+    const auto cubeCorners = cornerNormals(cube);
+    for (size_t f = 0; f < cube.triangles.size(); ++f) {
+        const Vec3 n = glm::normalize(cube.faceNormal(f));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(glm::dot(cubeCorners[f][c], n), 1.0, 1e-12) << f;
+    }
+    const TriangleMesh sphere = loadClosedMesh(test::modelsDir() / "sphere.obj", warnings);
+    const auto corners = cornerNormals(sphere);
+    double flatError = 0.0, smoothError = 0.0;
+    for (size_t f = 0; f < sphere.triangles.size(); f += 7) {
+        const auto& t = sphere.triangles[f];
+        // A point off the centroid, where interpolation matters.
+        const Vec3 p = 0.6 * sphere.positions[t[0]] + 0.3 * sphere.positions[t[1]] + 0.1 * sphere.positions[t[2]];
+        const Vec3 exact = glm::normalize(p);
+        const Vec3 smooth = interpolatedNormal(sphere, corners[f], f, p);
+        EXPECT_NEAR(glm::length(smooth), 1.0, 1e-12);
+        flatError += 1.0 - glm::dot(glm::normalize(sphere.faceNormal(f)), exact);
+        smoothError += 1.0 - glm::dot(smooth, exact);
+    }
+    EXPECT_LT(smoothError, 0.1 * flatError);
+    // At a corner the interpolated normal is that corner's.
+    const auto& t = sphere.triangles[0];
+    EXPECT_NEAR(glm::dot(interpolatedNormal(sphere, corners[0], 0, sphere.positions[t[1]]), corners[0][1]), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace lucent
