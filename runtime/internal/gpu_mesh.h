@@ -15,8 +15,8 @@ public:
     void draw() const;
 
 private:
-    GLuint vao_ = 0, buffer_ = 0;
-    GLsizei vertexCount_ = 0;
+    GLuint vao_ = 0, buffers_[2] = {0, 0};
+    GLsizei indexCount_ = 0;
 };
 
 }  // namespace lucent
