@@ -114,7 +114,8 @@ struct Level {
 
 }  // namespace
 
-std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge) {
+std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge,
+                                          size_t maxSamples) {
     std::vector<DiskSample> samples;
     if (surface.triangles.empty()) return samples;
     const auto [minIt, maxIt] = std::minmax_element(surface.radius.begin(), surface.radius.end());
@@ -169,9 +170,19 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         }
         Level& level = levels[li];
         if (level.fragments.empty()) continue;
+        // maxArea only grows as fragments come, so once the large ones are gone
+        // the acceptance rate can fall towards zero (on thin tubes it did, and the
+        // loop spun for minutes): after a run of rejections it is recomputed from
+        // the fragments left, which bounds the expected tries by max / mean area.
         size_t fi;
-        do fi = size_t(rng.uniform() * double(level.fragments.size()));
-        while (rng.uniform() * level.maxArea > level.fragments[fi].area());
+        for (int tries = 1;; ++tries) {
+            fi = size_t(rng.uniform() * double(level.fragments.size()));
+            if (rng.uniform() * level.maxArea <= level.fragments[fi].area()) break;
+            if (tries % 64 == 0) {
+                level.maxArea = 0.0;
+                for (const Fragment& g : level.fragments) level.maxArea = std::max(level.maxArea, g.area());
+            }
+        }
         const Fragment f = level.fragments[fi];
         level.fragments[fi] = level.fragments.back();
         level.fragments.pop_back();
@@ -187,6 +198,7 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
             grid.insert(x, rx, int32_t(samples.size()));
             samples.push_back({x, rx});
             disks.emplace_back(x, rx);
+            if (samples.size() >= maxSamples) break;
         }
         if (covered(f) || f.longestEdge() < finestEdge) continue;
         // Split into four at the edge midpoints; uncovered children go one level down.

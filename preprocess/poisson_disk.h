@@ -6,6 +6,7 @@
 // children go one level down. When no fragment is left the set is maximal up to
 // the finest level, and the work is linear in the number of fragments.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct DiskSample {
 
 // No two samples p, q are closer than max(r_p, r_q); every point x of the surface
 // lies within r_q of some sample q, up to fragments smaller than finestEdge.
-std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge);
+// Stops early, with maxSamples samples, when that budget is reached (the caller
+// says so: a set cut short is not maximal).
+std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t seed, double finestEdge,
+                                          size_t maxSamples = SIZE_MAX);
 
 }  // namespace lucent

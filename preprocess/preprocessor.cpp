@@ -236,13 +236,17 @@ std::vector<double> relativeRadii(const std::vector<HeuristicPoint>& density, Sa
 // Poisson disks on the live layers with their count fitted to the request: the
 // count scales as r^-k with k between 2 (layers sparser than r) and 3; measure k
 // from two runs, then correct. Updates r to the radius used.
-std::vector<DiskSample> fitPoissonDisks(RadiusSurface& live, const std::vector<double>& relativeRadius, double& r,
+std::vector<DiskSample> fitPoissonDisks(const std::string& name, RadiusSurface& live,
+                                        const std::vector<double>& relativeRadius, double& r,
                                         const PreprocessSettings& settings, PreprocessTimings& t) {
     std::vector<DiskSample> disks;
+    // A budget of 8x the samples asked for: a pass that reaches it is cut short
+    // (its count still steers the radius up), and a final one that does is an error.
+    const size_t budget = 8 * size_t(std::max(settings.samples, 1)) + 1000;
     auto sampleWith = [&](double radius) {
         live.radius.resize(relativeRadius.size());
         for (size_t i = 0; i < relativeRadius.size(); ++i) live.radius[i] = radius * relativeRadius[i];
-        disks = poissonDiskSample(live, settings.seed, 0.2 * radius);
+        disks = poissonDiskSample(live, settings.seed, 0.2 * radius, budget);
         ++t.poissonPasses;
         return double(std::max<size_t>(disks.size(), 1));
     };
@@ -255,6 +259,10 @@ std::vector<DiskSample> fitPoissonDisks(RadiusSurface& live, const std::vector<d
         r = r1 * std::pow(n1 / target, 1.0 / k);
         n0 = sampleWith(r);
     }
+    if (disks.size() >= budget)
+        throw Error(name, "Poisson-disk sampling placed " + std::to_string(budget) + " samples, 8x the " +
+                              std::to_string(settings.samples) + " asked for, and stopped: the offset layers hold far "
+                              "more area than the object's volume suggests (ask for fewer samples or check the mesh)");
     return disks;
 }
 
@@ -394,7 +402,7 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     const bool nothingCulled = live.triangles.size() == stack.surface.triangles.size();
     if (live.triangles.empty())
         throw Error(object.desc().mesh.string(), "no point inside receives light above the cull threshold");
-    const std::vector<DiskSample> disks = fitPoissonDisks(live, relativeRadius, r, settings, t);
+    const std::vector<DiskSample> disks = fitPoissonDisks(object.desc().mesh.string(), live, relativeRadius, r, settings, t);
     t.poissonDisk = clock.lap();
 
     SampleSet set = emptySetFor(object, settings, r);

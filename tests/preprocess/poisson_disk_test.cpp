@@ -73,3 +73,49 @@ TEST(PoissonDisk, SameSeedSameSamples) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// One large triangle and thousands of tiny ones far from it. Fragments are drawn
+// by rejection against the largest area a level has held: once the large one
+// was gone, each draw among the tiny ones took ~1e8 tries, and thin-tube meshes
+// (a torus knot's offset layers) spun for minutes. The sampler must finish and
+// cover every tiny triangle.
+TEST(PoissonDisk, FinishesOnceTheLargeFragmentsAreGone) {
+    RadiusSurface s;
+    s.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    s.triangles = {{0, 1, 2}};
+    const int side = 140;  // 19600 tiny triangles, 1e-4 across, 1e-3 apart, at z = 1
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) {
+            const Vec3 o(1e-3 * i, 1e-3 * j, 1.0);
+            const uint32_t k = uint32_t(s.positions.size());
+            s.positions.insert(s.positions.end(), {o, o + Vec3(1e-4, 0, 0), o + Vec3(0, 1e-4, 0)});
+            s.triangles.push_back({k, k + 1, k + 2});
+        }
+    s.radius.assign(s.positions.size(), 0.02);
+    const auto samples = poissonDiskSample(s, 5, 0.004);
+    size_t onTiny = 0;
+    for (const DiskSample& d : samples) onTiny += d.position.z > 0.5;
+    // The 0.14 x 0.14 patch needs about (0.14 / 0.02)^2 / 1.5 disks of radius 0.02, give or take.
+    EXPECT_GT(onTiny, 10u);
+    for (size_t t = 1; t < s.triangles.size(); t += 97) {
+        const Vec3 c = s.positions[s.triangles[t][0]];
+        bool covered = false;
+        for (const DiskSample& d : samples) covered = covered || glm::length(d.position - c) < d.radius + 1e-4;
+        EXPECT_TRUE(covered) << "tiny triangle " << t;
+    }
+}
+
+TEST(PoissonDisk, StopsAtItsBudget) {
+    RadiusSurface s;
+    s.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    s.triangles = {{0, 1, 2}};
+    s.radius.assign(3, 0.01);
+    EXPECT_GT(poissonDiskSample(s, 1, 0.002).size(), 1000u);
+    EXPECT_EQ(poissonDiskSample(s, 1, 0.002, 100).size(), 100u);
+}
+
+}  // namespace
+}  // namespace lucent
