@@ -71,7 +71,8 @@ std::vector<HeuristicPoint> densityAtPoints(HeuristicField& field, const std::ve
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const Vec3 q = (points[i] - field.centre) / field.scale;
             const openvdb::Vec3d p(q.x, q.y, q.z);
-            out[i].density = std::abs(div.wsSample(p));
+            // The grid's coordinates are world / scale, so its divergence is scale times the world's.
+            out[i].density = std::abs(div.wsSample(p)) / field.scale;
             out[i].receivable = receivable.wsSample(p);
             out[i].culled = out[i].receivable < settings.cullEpsilon;
         }

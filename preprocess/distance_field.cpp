@@ -10,16 +10,11 @@ namespace lucent {
 
 namespace {
 
-// OpenVDB's transforms refuse voxels below about 1e-8, so a model far from unit
-// size is handed to it divided by the power of 4 nearest its size (exact in
-// floating point, square roots included). Models from 2^-10 to 2^10 in size go
-// as they are: OpenVDB is not bitwise scale-equivariant, and their sample sets
-// stay those they were.
-double unitScaleFor(const TriangleMesh& mesh) {
-    const double size = std::max(mesh.bounds().diagonal(), 1e-300);
-    if (size >= std::ldexp(1.0, -10) && size <= std::ldexp(1.0, 10)) return 1.0;
-    return std::pow(4.0, std::round(std::log(size) / std::log(4.0)));
-}
+// The grid lives in the object's own frame: centred on its bounding box and in
+// units of its diagonal. OpenVDB's voxel lattice and its tolerances are then the
+// same for the object at any scale and position, so the layers, and the samples
+// on them, scale with the scene (OpenVDB also refuses voxels below about 1e-8).
+double unitScaleFor(const TriangleMesh& mesh) { return std::max(mesh.bounds().diagonal(), 1e-300); }
 
 }  // namespace
 

@@ -25,7 +25,8 @@ public:
 
     // The grid lives in coordinates relative to centre() (single-precision voxels
     // keep their accuracy for models far from the origin) and divided by scale(),
-    // a power of 4 near the model's size (any model is of unit size to OpenVDB).
+    // the bounding box's diagonal: OpenVDB sees every object at unit size, so the
+    // layers do not depend on the scene's unit.
     const openvdb::FloatGrid& grid() const { return *grid_; }
     const Vec3& centre() const { return centre_; }
     double scale() const { return scale_; }

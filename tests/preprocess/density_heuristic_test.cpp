@@ -21,7 +21,7 @@ struct Heuristic {
     std::vector<HeuristicPoint> at(const std::vector<Vec3>& points) { return densityAtPoints(field, points, settings); }
     Vec3 firstMoment(const Vec3& x) const {
         const openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::BoxSampler> s(*field.firstMoment);
-        const Vec3 q = x - field.centre;
+        const Vec3 q = (x - field.centre) / field.scale;
         const auto v = s.wsSample(openvdb::Vec3d(q.x, q.y, q.z));
         return Vec3(v.x(), v.y(), v.z());
     }

@@ -221,3 +221,46 @@ TEST(Preprocessor, ThinTubeTorusKnotFinishesWithItsSamples) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// Preprocessing does not depend on the scene's unit: the unit sphere scaled by
+// c, with sigma_t divided by c, gives the same samples up to scale (issue 13:
+// at 1e-3 the layers were cut differently and the image moved by 6.5%).
+TEST(Preprocessor, UniformScaleGivesTheSameSamplesUpToScale) {
+    test::ScratchDir dir;
+    std::vector<std::string> warnings;
+    const VolumeObject unit(test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75), warnings);
+    PreprocessSettings settings = qualityPreset("draft");
+    settings.samples = 3000;
+    const SampleSet a = preprocessObject(unit, settings);
+    for (const double c : {1e-3, 37.0}) {
+        std::string obj;
+        for (const Vec3& p : unit.mesh().positions) {
+            char line[128];
+            std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", c * p.x, c * p.y, c * p.z);
+            obj += line;
+        }
+        for (const auto& t : unit.mesh().triangles)
+            obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+        const VolumeObject scaled(test::simpleObject(dir.write("scaled.obj", obj), 2.0 / c, 0.75), warnings);
+        const SampleSet b = preprocessObject(scaled, settings);
+        ASSERT_EQ(a.size(), b.size()) << "scale " << c;
+        double worstPosition = 0.0, worstWidth = 0.0, worstSh = 0.0;
+        for (size_t i = 0; i < a.size(); ++i) {
+            worstPosition = std::max(worstPosition, double(glm::length(Vec3(b.positions[i]) / c - Vec3(a.positions[i]))) /
+                                                        a.parameters.meanRadius);
+            worstWidth = std::max(worstWidth, std::abs(b.widths[i] / c / a.widths[i] - 1.0));
+        }
+        for (size_t k = 0; k < a.sh.size(); ++k) worstSh = std::max(worstSh, double(std::abs(a.sh[k] - b.sh[k])));
+        std::printf("scale %g: %zu samples; largest differences: position %.2e radii, width %.2e, SH %.2e\n", c,
+                    b.size(), worstPosition, worstWidth, worstSh);
+        EXPECT_LT(worstPosition, 1e-4) << c;
+        EXPECT_LT(worstWidth, 1e-4) << c;
+        EXPECT_LT(worstSh, 1e-3) << c;
+    }
+}
+
+}  // namespace
+}  // namespace lucent
