@@ -39,10 +39,12 @@ void FrameTargets::drawMeshes(const FrameContext& frame) {
 
 void FrameTargets::draw(const FrameContext& frame) {
     const ViewSetup& view = frame.view;
-    front_.resize(view.width, view.height);
+    for (TextureTarget& t : frontLayers_) t.resize(view.width, view.height);
+    for (TextureTarget& t : backLayers_) t.resize(view.width, view.height);
     back_.resize(view.width, view.height);
     host_.resize(view.width, view.height);
     segments_.resize(view.width, view.height);
+    for (TextureTarget& t : inside_) t.resize(view.width, view.height);
     glViewport(0, 0, view.width, view.height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -71,8 +73,8 @@ void FrameTargets::draw(const FrameContext& frame) {
 
     // Where each pixel's ray enters the objects (nearest front face) and finally
     // leaves them (farthest back face).
-    front_.clearDepth(1.0f);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, front_.framebuffer());
+    frontLayers_[0].clearDepth(1.0f);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frontLayers_[0].framebuffer());
     glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
     drawMeshes(frame);
@@ -81,8 +83,32 @@ void FrameTargets::draw(const FrameContext& frame) {
     glCullFace(GL_FRONT);
     glDepthFunc(GL_GREATER);
     drawMeshes(frame);
-    glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
+    if (frame.options.scattering) {
+        // The later entries and the exits, nearest first, by depth peeling: each
+        // layer keeps the nearest face beyond the layer before it.
+        const GlProgram& peel = peelProgram_;
+        glUseProgram(peel.id());
+        glUniformMatrix4fv(peel.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
+        glUniform1i(peel.uniform("previousLayer"), 0);
+        for (int k = 0; k < gpu::kMaxRaySegments; ++k)
+            for (const bool exits : {false, true}) {
+                if (!exits && k == 0) continue;  // the nearest front face is drawn above
+                TextureTarget& layer = exits ? backLayers_[k] : frontLayers_[k];
+                layer.clearDepth(1.0f);
+                glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
+                glCullFace(exits ? GL_FRONT : GL_BACK);
+                // The first exit has no layer before it: one cleared to 0 lets every face through.
+                if (exits && k == 0) {
+                    glUseProgram(depthProgram_.id());
+                } else {
+                    glUseProgram(peel.id());
+                    glBindTextureUnit(0, (exits ? backLayers_[k - 1] : frontLayers_[k - 1]).texture());
+                }
+                drawMeshes(frame);
+            }
+    }
+    glCullFace(GL_BACK);
 
     // Each pixel's ray segment inside the objects, once, so that the scattering
     // fragments read one texel instead of three depths and three unprojections.
@@ -91,6 +117,10 @@ void FrameTargets::draw(const FrameContext& frame) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, segments_.framebuffer());
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
+    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_[0].texture(), 0);
+    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT2, inside_[1].texture(), 0);
+    const GLenum outputs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(segments_.framebuffer(), 3, outputs);
     const GlProgram& p = segmentProgram_;
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
@@ -100,12 +130,19 @@ void FrameTargets::draw(const FrameContext& frame) {
     for (const GpuObject& o : frame.objects)
         cameraInside = cameraInside || o.boundary->contains(Vec3(view.cameraPosition));
     glUniform1i(p.uniform("cameraInside"), cameraInside ? 1 : 0);
-    glBindTextureUnit(0, front_.texture());
-    glBindTextureUnit(1, back_.texture());
-    glBindTextureUnit(2, host_.texture());
-    glUniform1i(p.uniform("frontDepth"), 0);
-    glUniform1i(p.uniform("backDepth"), 1);
-    glUniform1i(p.uniform("hostDepth"), 2);
+    glBindTextureUnit(0, back_.texture());
+    glBindTextureUnit(1, host_.texture());
+    glUniform1i(p.uniform("farthestBack"), 0);
+    glUniform1i(p.uniform("hostDepth"), 1);
+    GLint units[2][gpu::kMaxRaySegments];
+    for (int k = 0; k < gpu::kMaxRaySegments; ++k) {
+        units[0][k] = 2 + k;
+        units[1][k] = 2 + gpu::kMaxRaySegments + k;
+        glBindTextureUnit(GLuint(units[0][k]), frontLayers_[k].texture());
+        glBindTextureUnit(GLuint(units[1][k]), backLayers_[k].texture());
+    }
+    glUniform1iv(p.uniform("frontLayers"), gpu::kMaxRaySegments, units[0]);
+    glUniform1iv(p.uniform("backLayers"), gpu::kMaxRaySegments, units[1]);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);

@@ -4,12 +4,14 @@
 // of the translucent meshes, and each pixel's ray segment [t0, t1] inside them.
 #include "runtime/gl.h"
 #include "runtime/internal/gl_program.h"
+#include "runtime/internal/gpu_layout.h"
 #include "runtime/internal/render_pass.h"
 
 namespace lucent {
 
 // A framebuffer with one texture the passes sample: a depth texture
-// (GL_DEPTH_COMPONENT32F) or a colour one (the RG32F ray segments).
+// (GL_DEPTH_COMPONENT32F) or a colour one (the RG32F ray segments, the RGBA32F
+// intervals inside the objects).
 class TextureTarget {
 public:
     explicit TextureTarget(GLenum textureFormat) : format_(textureFormat) {}
@@ -42,16 +44,26 @@ public:
     // Draws every object's boundary mesh.
     static void drawMeshes(const FrameContext& frame);
 
-    GLuint frontDepth() const { return front_.texture(); }
+    GLuint frontDepth() const { return frontLayers_[0].texture(); }
     GLuint raySegments() const { return segments_.texture(); }
+    // Two RGBA32F textures: the first kMaxRaySegments intervals each pixel's ray
+    // spends inside the objects, two per texel (segment.frag).
+    GLuint insideSegments(int i) const { return inside_[i].texture(); }
     GLuint emptyVertexArray() const { return emptyVao_; }
 
 private:
     GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
     GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
+    GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
     GlProgram segmentProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}};
-    TextureTarget front_{GL_DEPTH_COMPONENT32F}, back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
+    // The entries (front faces) and exits (back faces) nearest first, peeled.
+    TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F),
+                                                       TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F)};
+    TextureTarget backLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F),
+                                                      TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F)};
+    TextureTarget back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
     TextureTarget segments_{GL_RG32F};
+    TextureTarget inside_[2] = {TextureTarget(GL_RGBA32F), TextureTarget(GL_RGBA32F)};
     GLuint emptyVao_ = 0;
 };
 

@@ -1,8 +1,10 @@
 #version 450 core
 // Pass 2 (thesis 3.4.2, eq. 3.4): the Gaussian of one sample integrated exactly
-// (erf) along this pixel's ray over the part of the ray inside the object (from
-// the front face to the farthest back face), stopped by the host's opaque
+// (erf) along this pixel's ray over the parts of the ray inside the objects (up
+// to kMaxRaySegments intervals, segment.frag: the air between two parts of a
+// concave object holds nothing and dims nothing), stopped by the host's opaque
 // geometry and the object's blockers, and clipped to the sample's density slab.
+#include "gpu_layout.h"
 in GeometryOut {
     flat vec3 viewCentre;    // of this Gaussian: the sample's or its mirror image's
     flat vec3 anchorOffset;  // that centre minus the sample's, where the light is known
@@ -15,7 +17,7 @@ in GeometryOut {
     flat vec2 region;
 } f;
 
-uniform sampler2D raySegments;  // per pixel [t0, t1] inside the objects (segment.frag)
+uniform sampler2D insideSegments[2];  // per pixel, the intervals inside the objects (segment.frag)
 uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
 uniform mat3 viewToWorld;
 uniform vec3 cameraPosition;
@@ -107,35 +109,50 @@ vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
 #endif
 
 void main() {
-    vec2 segment = texelFetch(raySegments, ivec2(gl_FragCoord.xy), 0).rg;
-    float t0 = segment.x, t1 = segment.y;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 first = texelFetch(insideSegments[0], pixel, 0), second = texelFetch(insideSegments[1], pixel, 0);
+    vec2 inside[4] = vec2[](first.xy, first.zw, second.xy, second.zw);
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
-    vec3 slabsBefore = vec3(0.0);
+    float o = 0.0, d = 0.0;
+    vec2 span = vec2(-3.4e38, 3.4e38);
     if (regionAxis < 3) {
         // The part of the ray inside the sample's density slab.
-        float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
-        vec2 span = slabInterval(f.region, o, d);
-        t0 = max(t0, span.x);
-        t1 = min(t1, span.y);
+        o = cameraPosition[regionAxis];
+        d = (viewToWorld * dir)[regionAxis];
+        span = slabInterval(f.region, o, d);
+    }
+    vec3 integral = vec3(0.0);
+    float coverage = 0.0;
+    float insideBefore = 0.0;          // length inside the objects before this interval
+    vec3 slabsBeforeInterval = vec3(0.0);
+    bool any = false;
+    for (int k = 0; k < kMaxRaySegments; ++k) {
+        float a = inside[k].x, b = inside[k].y;
+        if (!(b > a)) break;  // no more intervals (unused ones are (-1, -2))
+        // The view transmittance counts only the length inside: from an
+        // effective front face that leaves out the air before this interval.
+        float front = a - insideBefore;
+        float t0 = max(a, span.x), t1 = min(b, span.y);
+        vec3 slabsBefore = slabsBeforeInterval;
 #ifdef DENSITY_SLABS
-        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, segment.x, t0);
+        if (regionAxis < 3 && f.viewFromFront == 1) {
+            if (t1 > t0) slabsBefore += otherSlabsDepth(o, d, a, t0);
+            slabsBeforeInterval += otherSlabsDepth(o, d, a, b);
+        }
 #endif
+        insideBefore += b - a;
+        if (t1 <= t0) continue;  // the interval misses the sample's slab
+        any = true;
+        integral.r += shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
+        if (channels == 3) {
+            integral.g += shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
+            integral.b += shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
+        }
+        if (discardBelow > 0.0) coverage += gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1);
     }
-    if (t1 <= t0) discard;  // the ray misses the object or the slab, or the host hides it
-
-    vec3 integral;
-    // t0 of this pixel's own ray: the view transmittance starts at its front face.
-    float front = segment.x;
-    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
-    if (channels == 3) {
-        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
-        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
-    } else {
-        integral.gb = integral.rr;
-    }
+    if (!any) discard;  // the ray misses the objects or the slab, or the host hides them
+    if (channels != 3) integral.gb = integral.rr;
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
-    if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
-                                  discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
-        discard;
+    if (discardBelow > 0.0 && coverage < discardBelow * f.width * sqrt(2.0 * 3.14159265358979)) discard;
     colour = vec4(f.radiance * integral, 1.0);
 }

@@ -1,16 +1,27 @@
 #version 450 core
 // Once per pixel and frame: where the pixel's ray is inside the translucent
-// objects, [t0, t1] in eye distance, from the nearest front face to the farthest
-// back face and stopped by the host's depth. (t0 > t1 where the host hides the
-// object; t0 < 0 where the ray misses it.)
-uniform sampler2D frontDepth;
-uniform sampler2D backDepth;
+// objects, in eye distance, stopped by the host's depth.
+//  - segment: [t0, t1] from the nearest front face to the farthest back face
+//    (t0 > t1 where the host hides the objects; t0 < 0 where the ray misses them);
+//  - inside01, inside23: the first four intervals the ray spends inside, from
+//    the peeled entries (front faces) and exits (back faces), so that the air
+//    between two parts of a concave object, or between two objects, holds no
+//    Gaussian and dims nothing (scatter.frag). Closed meshes alternate entry and
+//    exit; past the fourth entry the last interval runs to the farthest back face.
+//    An unused interval is (-1, -2).
+#include "gpu_layout.h"
+
+uniform sampler2D frontLayers[kMaxRaySegments];  // 1st, 2nd, ... nearest front face
+uniform sampler2D backLayers[kMaxRaySegments];   // 1st, 2nd, ... nearest back face
+uniform sampler2D farthestBack;
 uniform sampler2D hostDepth;
 uniform mat4 inverseProjection;
 uniform vec2 viewportSize;
 uniform bool cameraInside;  // then the rays start at the eye
 
-out vec2 segment;
+layout(location = 0) out vec2 segment;
+layout(location = 1) out vec4 inside01;
+layout(location = 2) out vec4 inside23;
 
 float eyeDistance(float depth, vec2 ndc) {
     vec4 p = inverseProjection * vec4(ndc, 2.0 * depth - 1.0, 1.0);
@@ -19,15 +30,34 @@ float eyeDistance(float depth, vec2 ndc) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    float front = texelFetch(frontDepth, pixel, 0).r, back = texelFetch(backDepth, pixel, 0).r;
+    vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
+    float front = texelFetch(frontLayers[0], pixel, 0).r, back = texelFetch(farthestBack, pixel, 0).r;
+    float host = texelFetch(hostDepth, pixel, 0).r;
+    float hostT = host < 1.0 ? eyeDistance(host, ndc) : 3.4e38;
+    vec2 inside[kMaxRaySegments];
+    for (int k = 0; k < kMaxRaySegments; ++k) inside[k] = vec2(-1.0, -2.0);
     if (back <= 0.0 || (front >= 1.0 && !cameraInside)) {
         segment = vec2(-1.0, -2.0);
-        return;
+    } else {
+        float t0 = cameraInside ? 0.0 : eyeDistance(front, ndc);
+        float tEnd = eyeDistance(back, ndc);
+        segment = vec2(t0, min(tEnd, hostT));
+        // Interval k enters at the k-th front face (camera inside: at the eye, then
+        // at the (k-1)-th) and leaves at the k-th back face.
+        for (int k = 0; k < kMaxRaySegments; ++k) {
+            float entry;
+            if (cameraInside) entry = k == 0 ? 0.0 : texelFetch(frontLayers[k - 1], pixel, 0).r;
+            else entry = texelFetch(frontLayers[k], pixel, 0).r;
+            float exit = texelFetch(backLayers[k], pixel, 0).r;
+            if ((k > 0 || !cameraInside) && entry >= 1.0) break;
+            if (exit >= 1.0) break;
+            float a = (cameraInside && k == 0) ? 0.0 : eyeDistance(entry, ndc);
+            float b = k == kMaxRaySegments - 1 ? tEnd : eyeDistance(exit, ndc);
+            b = min(b, hostT);
+            if (a >= b) break;
+            inside[k] = vec2(a, b);
+        }
     }
-    vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
-    float t0 = cameraInside ? 0.0 : eyeDistance(front, ndc);
-    float t1 = eyeDistance(back, ndc);
-    float host = texelFetch(hostDepth, pixel, 0).r;
-    if (host < 1.0) t1 = min(t1, eyeDistance(host, ndc));
-    segment = vec2(t0, t1);
+    inside01 = vec4(inside[0], inside[1]);
+    inside23 = vec4(inside[2], inside[3]);
 }
