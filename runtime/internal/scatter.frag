@@ -1,7 +1,7 @@
 #version 450 core
 // Pass 2 (thesis 3.4.2, eq. 3.4): the Gaussian of one sample integrated exactly
-// (erf) along this pixel's ray over the parts of the ray inside the objects (up
-// to kMaxRaySegments intervals, segment.frag: the air between two parts of a
+// (erf) along this pixel's ray over the interval inside the objects nearest its
+// centre (of up to kMaxRaySegments, segment.frag: the air between two parts of a
 // concave object holds nothing and dims nothing), stopped by the host's opaque
 // geometry and the object's blockers, and clipped to the sample's density slab.
 #include "gpu_layout.h"
@@ -111,48 +111,52 @@ vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec4 first = texelFetch(insideSegments[0], pixel, 0), second = texelFetch(insideSegments[1], pixel, 0);
-    vec2 inside[4] = vec2[](first.xy, first.zw, second.xy, second.zw);
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
-    float o = 0.0, d = 0.0;
-    vec2 span = vec2(-3.4e38, 3.4e38);
+    // The interval inside the objects nearest the Gaussian's centre along the ray:
+    // a Gaussian is narrow next to the parts of an object, so it is integrated over
+    // that interval alone, attenuated by the length inside before it (the air
+    // between two parts holds nothing and dims nothing). Chosen with selects, not
+    // branches: llvmpipe runs every branch of a fragment shader, and integrating
+    // each interval doubled the frame.
+    vec4 entries = vec4(first.x, first.z, second.x, second.z), exits = vec4(first.y, first.w, second.y, second.w);
+    bvec4 used = greaterThan(exits, entries);
+    vec4 lengths = mix(vec4(0.0), exits - entries, used);
+    vec4 insideBefore = vec4(0.0, lengths.x, lengths.x + lengths.y, lengths.x + lengths.y + lengths.z);
+    float tc = dot(dir, f.viewCentre);
+    vec4 away = mix(vec4(3.4e38), max(max(entries - tc, tc - exits), 0.0), used);
+    float best = away.x, a = entries.x, b = exits.x, before = 0.0;
+    if (away.y < best) { best = away.y; a = entries.y; b = exits.y; before = insideBefore.y; }
+    if (away.z < best) { best = away.z; a = entries.z; b = exits.z; before = insideBefore.z; }
+    if (away.w < best) { a = entries.w; b = exits.w; before = insideBefore.w; }
+    if (!(b > a)) discard;  // the ray misses the objects, or the host hides them
+    float front = a - before;
+    float t0 = a, t1 = b;
+    vec3 slabsBefore = vec3(0.0);
     if (regionAxis < 3) {
         // The part of the ray inside the sample's density slab.
-        o = cameraPosition[regionAxis];
-        d = (viewToWorld * dir)[regionAxis];
-        span = slabInterval(f.region, o, d);
-    }
-    vec3 integral = vec3(0.0);
-    float coverage = 0.0;
-    float insideBefore = 0.0;          // length inside the objects before this interval
-    vec3 slabsBeforeInterval = vec3(0.0);
-    bool any = false;
-    for (int k = 0; k < kMaxRaySegments; ++k) {
-        float a = inside[k].x, b = inside[k].y;
-        if (!(b > a)) break;  // no more intervals (unused ones are (-1, -2))
-        // The view transmittance counts only the length inside: from an
-        // effective front face that leaves out the air before this interval.
-        float front = a - insideBefore;
-        float t0 = max(a, span.x), t1 = min(b, span.y);
-        vec3 slabsBefore = slabsBeforeInterval;
+        float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
+        vec2 span = slabInterval(f.region, o, d);
+        t0 = max(t0, span.x);
+        t1 = min(t1, span.y);
 #ifdef DENSITY_SLABS
-        if (regionAxis < 3 && f.viewFromFront == 1) {
-            if (t1 > t0) slabsBefore += otherSlabsDepth(o, d, a, t0);
-            slabsBeforeInterval += otherSlabsDepth(o, d, a, b);
-        }
+        // From the first entry: across the air between parts too (a concave object
+        // of slabs is not exact here).
+        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, entries.x, t0) ;
 #endif
-        insideBefore += b - a;
-        if (t1 <= t0) continue;  // the interval misses the sample's slab
-        any = true;
-        integral.r += shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
-        if (channels == 3) {
-            integral.g += shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
-            integral.b += shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
-        }
-        if (discardBelow > 0.0) coverage += gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1);
     }
-    if (!any) discard;  // the ray misses the objects or the slab, or the host hides them
-    if (channels != 3) integral.gb = integral.rr;
+    if (t1 <= t0) discard;  // the interval misses the sample's slab
+
+    vec3 integral;
+    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
+    if (channels == 3) {
+        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
+        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
+    } else {
+        integral.gb = integral.rr;
+    }
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
-    if (discardBelow > 0.0 && coverage < discardBelow * f.width * sqrt(2.0 * 3.14159265358979)) discard;
+    if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
+                                  discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
+        discard;
     colour = vec4(f.radiance * integral, 1.0);
 }
