@@ -2,6 +2,7 @@
 // The viewer's display pass: linear radiance times exposure, to sRGB.
 uniform sampler2D radiance;
 uniform float exposure;
+uniform ivec2 offset;  // of the view in the window (beside the panel)
 out vec4 colour;
 
 vec3 toSrgb(vec3 c) {
@@ -10,6 +11,6 @@ vec3 toSrgb(vec3 c) {
 }
 
 void main() {
-    vec3 c = texelFetch(radiance, ivec2(gl_FragCoord.xy), 0).rgb;
+    vec3 c = texelFetch(radiance, ivec2(gl_FragCoord.xy) - offset, 0).rgb;
     colour = vec4(toSrgb(max(c, vec3(0.0)) * exposure), 1.0);
 }

@@ -124,6 +124,29 @@ void lightsPanel(ViewerState& state) {
 // Voxels along each object's longest side when the viewer solves multiple
 // scattering: about a second per solve here (docs/hybrid.md), then free per frame.
 constexpr int kViewerGridResolution = 48;
+// The control panel's width in pixels, docked at the left of the window beside
+// the view (wide enough for its labels).
+constexpr int kPanelWidth = 380;
+
+// What the window shows, panel included, read back before it is swapped: PNG
+// bytes as displayed (the tone mapping already applied).
+void saveWindow(const std::string& file, int width, int height) {
+    std::vector<float> rgb(size_t(width) * height * 3);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
+    Image image(width, height);
+    // Rows bottom-up in GL; sRGB values back to linear, so that writing with
+    // exposure 1 encodes them again as they were shown.
+    auto linear = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float* p = &rgb[(size_t(height - 1 - y) * width + x) * 3];
+            image.at(x, y) = glm::vec3(linear(p[0]), linear(p[1]), linear(p[2]));
+        }
+    writeImage(file, image, 1.0f);
+}
 
 void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     const std::vector<std::string> script = readScript(options.script);  // cheap: its errors come first
@@ -139,7 +162,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     const int width = options.width ? options.width : scene.camera.width;
     const int height = options.height ? options.height : scene.camera.height;
     state.camera.resize(width, height);
-    GlfwWindow window(width, height);
+    GlfwWindow window(width + kPanelWidth, height);  // the view keeps its size beside the panel
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -171,6 +194,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         std::string solveStatus;
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
+        bool tabWasDown = false;
+        bool screenshotPanel = false;  // the panel's own screenshot button: with the panel?
 
         while (!glfwWindowShouldClose(window.get()) && !state.quit) {
             glfwPollEvents();
@@ -181,7 +206,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 applyScriptLine(state, script[scriptLine], options.script.string() + ":" + std::to_string(scriptLine + 1));
                 ++scriptLine;
             } else if (!options.screenshot.empty()) {
-                state.screenshots.push_back(options.screenshot.string());
+                state.screenshots.push_back({options.screenshot.string(), false});
                 state.quit = true;
             }
 
@@ -196,15 +221,22 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 if (wheel != 0.0f) state.camera.zoom(std::pow(0.9, wheel));
             }
             lastMouse = mouse;
+            // Tab shows or hides the panel.
+            const bool tabDown = glfwGetKey(window.get(), GLFW_KEY_TAB) == GLFW_PRESS;
+            if (tabDown && !tabWasDown && !ImGui::GetIO().WantCaptureKeyboard) state.panel = !state.panel;
+            tabWasDown = tabDown;
 
             int fbWidth, fbHeight;
             glfwGetFramebufferSize(window.get(), &fbWidth, &fbHeight);
-            if (fbWidth <= 0 || fbHeight <= 0) continue;
-            if (!frame || fbWidth != frameWidth || fbHeight != frameHeight) {
-                frame = std::make_unique<OffscreenFrame>(fbWidth, fbHeight);
-                frameWidth = fbWidth;
+            // The view fills the window beside the docked panel, or all of it.
+            const int panelWidth = state.panel ? std::min(kPanelWidth, fbWidth - 1) : 0;
+            const int viewWidth = fbWidth - panelWidth;
+            if (viewWidth <= 0 || fbHeight <= 0) continue;
+            if (!frame || viewWidth != frameWidth || fbHeight != frameHeight) {
+                frame = std::make_unique<OffscreenFrame>(viewWidth, fbHeight);
+                frameWidth = viewWidth;
                 frameHeight = fbHeight;
-                state.camera.resize(fbWidth, fbHeight);
+                state.camera.resize(viewWidth, fbHeight);
             }
             if (state.lightsChanged) {
                 renderer.setLights(state.lights);
@@ -292,50 +324,72 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
             glFinish();
             frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            if (!(state.exposure > 0.0f)) state.exposure = autoExposure(frame->read());
+            if (std::isnan(state.exposureStops)) state.exposureStops = std::log2(autoExposure(frame->read()));
+            const float exposure = std::exp2(state.exposureStops);
 
-            for (const std::string& file : state.screenshots) {
-                writeImage(file, frame->read(), state.exposure);
-                std::fprintf(stderr, "lucent: view: saved %s\n", file.c_str());
+            std::vector<std::string> withPanel;
+            for (const auto& shot : state.screenshots) {
+                if (shot.withPanel) {
+                    withPanel.push_back(shot.file);
+                    continue;
+                }
+                writeImage(shot.file, frame->read(), exposure);
+                std::fprintf(stderr, "lucent: view: saved %s\n", shot.file.c_str());
             }
             state.screenshots.clear();
 
-            // Display: tone-mapped frame, then the panel.
+            // Display: tone-mapped frame beside the panel, then the panel.
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fbWidth, fbHeight);
+            glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glViewport(panelWidth, 0, viewWidth, fbHeight);
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_BLEND);
             glUseProgram(tonemap.id());
             glBindTextureUnit(0, frame->colourTexture());
             glUniform1i(tonemap.uniform("radiance"), 0);
-            glUniform1f(tonemap.uniform("exposure"), state.exposure);
+            glUniform1f(tonemap.uniform("exposure"), exposure);
+            glUniform2i(tonemap.uniform("offset"), panelWidth, 0);
             glBindVertexArray(emptyVao);
             glDrawArrays(GL_TRIANGLES, 0, 3);
 
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
-            ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-            ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
-            ImGui::Begin("Lucent");
-            ImGui::Text("method %s: %.1f ms per frame, %zu samples", method.name.c_str(), frameMs, renderer.sampleCount());
-            ImGui::Checkbox("surface", &state.surface);
-            ImGui::SameLine();
-            ImGui::Checkbox("scattering", &state.scattering);
+            if (state.panel) {
+                ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+                ImGui::SetNextWindowSize(ImVec2(float(panelWidth), float(fbHeight)), ImGuiCond_Always);
+                ImGui::Begin("Lucent (Tab hides)", nullptr,
+                             ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+                ImGui::PushItemWidth(-150.0f);  // room for the labels
+                ImGui::Text("method %s: %.1f ms per frame, %zu samples", method.name.c_str(), frameMs, renderer.sampleCount());
+                ImGui::Checkbox("surface", &state.surface);
+                ImGui::SameLine();
+                ImGui::Checkbox("scattering", &state.scattering);
 #ifdef LUCENT_HAVE_OPENCL
-            int multiple = int(state.multiple);
-            ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
-            state.multiple = Multiple(multiple);
-            if (!solveStatus.empty()) ImGui::Text("%s", solveStatus.c_str());
+                int multiple = int(state.multiple);
+                ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
+                state.multiple = Multiple(multiple);
+                if (!solveStatus.empty()) ImGui::Text("%s", solveStatus.c_str());
 #endif
-            ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-            ImGui::SliderFloat("exposure", &state.exposure, 1e-3f, 1e4f, "%.3g", ImGuiSliderFlags_Logarithmic);
-            if (ImGui::Button("save screenshot")) state.screenshots.push_back("lucent-screenshot.png");
-            ImGui::Separator();
-            lightsPanel(state);
-            ImGui::End();
+                ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+                ImGui::SliderFloat("exposure (stops)", &state.exposureStops, -20.0f, 20.0f, "%+.1f");
+                if (ImGui::Button("save screenshot"))
+                    state.screenshots.push_back({"lucent-screenshot.png", screenshotPanel});
+                ImGui::SameLine();
+                ImGui::Checkbox("with the panel", &screenshotPanel);
+                ImGui::Separator();
+                lightsPanel(state);
+                ImGui::PopItemWidth();
+                ImGui::End();
+            }
             ImGui::Render();
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            for (const std::string& file : withPanel) {
+                saveWindow(file, fbWidth, fbHeight);
+                std::fprintf(stderr, "lucent: view: saved %s (with the panel)\n", file.c_str());
+            }
             glfwSwapBuffers(window.get());
         }
         glDeleteVertexArrays(1, &emptyVao);

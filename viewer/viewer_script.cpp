@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "core/error.h"
@@ -113,7 +114,12 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
     } else if (command == "extinction") {
         state.extinctionScale = float(readPositive(in, where, "extinction"));
     } else if (command == "exposure") {
-        state.exposure = float(readPositive(in, where, "exposure"));
+        double stops = 0.0;
+        if (!(in >> stops) || !std::isfinite(stops) || std::abs(stops) > 64.0)
+            throw Error(where, "exposure needs a number of stops in [-64, 64]");
+        state.exposureStops = float(stops);
+    } else if (command == "panel") {
+        state.panel = onOff(in, where);
     } else if (command == "surface") {
         state.surface = onOff(in, where);
     } else if (command == "multiple") {
@@ -130,7 +136,15 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
     } else if (command == "screenshot") {
         std::string file;
         if (!(in >> file)) throw Error(where, "screenshot needs a file name");
-        state.screenshots.push_back(file);
+        ViewerState::Screenshot shot{file, false};
+        std::string what;
+        if (in >> what) {
+            if (what != "panel") throw Error(where, "screenshot takes a file name and optionally 'panel'");
+            if (std::filesystem::path(file).extension() != ".png")
+                throw Error(where, "a screenshot with the panel is what the window shows: it must be a .png");
+            shot.withPanel = true;
+        }
+        state.screenshots.push_back(shot);
     } else if (command == "quit") {
         state.quit = true;
     } else {

@@ -1,6 +1,7 @@
 #pragma once
 // What the viewer shows and the user (or a script) changes: camera, lights,
 // medium scale, passes, exposure.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -21,10 +22,18 @@ struct ViewerState {
     enum class Multiple { Off, Lbl, Mdom };
     Multiple multiple = Multiple::Off;
     bool waiting = false;  // a script's `wait`: no further script line until the solve is done
-    float exposure = 0.0f;  // 0: pick one from the first frame
+    // Exposure in stops: the display multiplies radiance by 2^stops. NaN: pick
+    // one from the first frame (the 99.5th percentile of luminance to white).
+    float exposureStops = NAN;
+    bool panel = true;  // the control panel, docked beside the view
     bool lightsChanged = true;
     bool quit = false;
-    std::vector<std::string> screenshots;  // to save after the next frame
+    struct Screenshot {
+        std::string file;
+        bool withPanel = false;  // the whole window as shown (PNG), or the view alone
+        bool operator==(const Screenshot& o) const { return file == o.file && withPanel == o.withPanel; }
+    };
+    std::vector<Screenshot> screenshots;  // to save after the next frame
 };
 
 // Applies one script line (see docs/viewer.md); throws Error("SCRIPT:LINE: problem").

@@ -44,7 +44,7 @@ void FrameTargets::draw(const FrameContext& frame) {
     back_.resize(view.width, view.height);
     host_.resize(view.width, view.height);
     segments_.resize(view.width, view.height);
-    for (TextureTarget& t : inside_) t.resize(view.width, view.height);
+    inside_.resize(view.width, view.height);
     glViewport(0, 0, view.width, view.height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -117,10 +117,9 @@ void FrameTargets::draw(const FrameContext& frame) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, segments_.framebuffer());
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_[0].texture(), 0);
-    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT2, inside_[1].texture(), 0);
-    const GLenum outputs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(segments_.framebuffer(), 3, outputs);
+    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_.texture(), 0);
+    const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
     const GlProgram& p = segmentProgram_;
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));

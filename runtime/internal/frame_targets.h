@@ -46,9 +46,8 @@ public:
 
     GLuint frontDepth() const { return frontLayers_[0].texture(); }
     GLuint raySegments() const { return segments_.texture(); }
-    // Two RGBA32F textures: the first kMaxRaySegments intervals each pixel's ray
-    // spends inside the objects, two per texel (segment.frag).
-    GLuint insideSegments(int i) const { return inside_[i].texture(); }
+    // RGBA32F: the first two intervals each pixel's ray spends inside the objects (segment.frag).
+    GLuint insideSegments() const { return inside_.texture(); }
     GLuint emptyVertexArray() const { return emptyVao_; }
 
 private:
@@ -57,13 +56,13 @@ private:
     GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
     GlProgram segmentProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}};
     // The entries (front faces) and exits (back faces) nearest first, peeled.
-    TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F),
-                                                       TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F)};
-    TextureTarget backLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F),
-                                                      TextureTarget(GL_DEPTH_COMPONENT32F), TextureTarget(GL_DEPTH_COMPONENT32F)};
+    TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
+                                                       TextureTarget(GL_DEPTH_COMPONENT32F)};
+    TextureTarget backLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
+                                                      TextureTarget(GL_DEPTH_COMPONENT32F)};
     TextureTarget back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
     TextureTarget segments_{GL_RG32F};
-    TextureTarget inside_[2] = {TextureTarget(GL_RGBA32F), TextureTarget(GL_RGBA32F)};
+    TextureTarget inside_{GL_RGBA32F};
     GLuint emptyVao_ = 0;
 };
 

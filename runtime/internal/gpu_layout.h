@@ -28,10 +28,10 @@ LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the o
 LUCENT_GPU_CONSTANT(kUnitShadowDistances, 1)  // blocker distance maps (runtime/internal/blocker_shadows.h)
 LUCENT_GPU_CONSTANT(kUnitGridSource, 2)       // a multiple-scattering grid's source (runtime/internal/grid_pass.h)
 LUCENT_GPU_CONSTANT(kUnitGridExtinction, 3)   // and its extinction
-LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the intervals inside the objects: units 4 and 5
+LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the two intervals inside the objects
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
-LUCENT_GPU_CONSTANT(kMaxRaySegments, 4)
+LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)
 
 struct Light {
     vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel

@@ -60,8 +60,7 @@ void SamplePass::setFrameUniforms(const FrameContext& frame) const {
         glProgramUniform1f(id, program->uniform("discardBelow"), frame.options.discardBelow);
         glProgramUniform1f(id, program->uniform("extinctionScale"), frame.options.extinctionScale);
         glProgramUniform1i(id, program->uniform("raySegments"), GLint(gpu::kUnitRaySegments));
-        const GLint inside[2] = {gpu::kUnitInsideSegments, gpu::kUnitInsideSegments + 1};
-        glProgramUniform1iv(id, program->uniform("insideSegments"), 2, inside);
+        glProgramUniform1i(id, program->uniform("insideSegments"), GLint(gpu::kUnitInsideSegments));
     }
 }
 
@@ -92,7 +91,7 @@ void SamplePass::draw(FrameContext& frame) {
     glBlendFunc(GL_ONE, GL_ONE);
     setFrameUniforms(frame);
     glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
-    for (int i = 0; i < 2; ++i) glBindTextureUnit(GLuint(gpu::kUnitInsideSegments + i), frame.targets.insideSegments(i));
+    glBindTextureUnit(gpu::kUnitInsideSegments, frame.targets.insideSegments());
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
         const GlProgram& p = slabs.empty() ? scatterProgram_ : scatterSlabsProgram_;

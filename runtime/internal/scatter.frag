@@ -1,10 +1,9 @@
 #version 450 core
 // Pass 2 (thesis 3.4.2, eq. 3.4): the Gaussian of one sample integrated exactly
 // (erf) along this pixel's ray over the interval inside the objects nearest its
-// centre (of up to kMaxRaySegments, segment.frag: the air between two parts of a
+// centre (of the first two, segment.frag: the air between two parts of a
 // concave object holds nothing and dims nothing), stopped by the host's opaque
 // geometry and the object's blockers, and clipped to the sample's density slab.
-#include "gpu_layout.h"
 in GeometryOut {
     flat vec3 viewCentre;    // of this Gaussian: the sample's or its mirror image's
     flat vec3 anchorOffset;  // that centre minus the sample's, where the light is known
@@ -17,7 +16,7 @@ in GeometryOut {
     flat vec2 region;
 } f;
 
-uniform sampler2D insideSegments[2];  // per pixel, the intervals inside the objects (segment.frag)
+uniform sampler2D insideSegments;  // per pixel, the first two intervals inside the objects (segment.frag)
 uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
 uniform mat3 viewToWorld;
 uniform vec3 cameraPosition;
@@ -110,24 +109,19 @@ vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 first = texelFetch(insideSegments[0], pixel, 0), second = texelFetch(insideSegments[1], pixel, 0);
+    vec4 inside = texelFetch(insideSegments, pixel, 0);
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
     // The interval inside the objects nearest the Gaussian's centre along the ray:
     // a Gaussian is narrow next to the parts of an object, so it is integrated over
     // that interval alone, attenuated by the length inside before it (the air
-    // between two parts holds nothing and dims nothing). Chosen with selects, not
-    // branches: llvmpipe runs every branch of a fragment shader, and integrating
-    // each interval doubled the frame.
-    vec4 entries = vec4(first.x, first.z, second.x, second.z), exits = vec4(first.y, first.w, second.y, second.w);
-    bvec4 used = greaterThan(exits, entries);
-    vec4 lengths = mix(vec4(0.0), exits - entries, used);
-    vec4 insideBefore = vec4(0.0, lengths.x, lengths.x + lengths.y, lengths.x + lengths.y + lengths.z);
+    // between two parts holds nothing and dims nothing). Chosen by a select, not a
+    // branch: llvmpipe runs every branch of a fragment shader, and integrating
+    // each of four intervals doubled the frame.
     float tc = dot(dir, f.viewCentre);
-    vec4 away = mix(vec4(3.4e38), max(max(entries - tc, tc - exits), 0.0), used);
-    float best = away.x, a = entries.x, b = exits.x, before = 0.0;
-    if (away.y < best) { best = away.y; a = entries.y; b = exits.y; before = insideBefore.y; }
-    if (away.z < best) { best = away.z; a = entries.z; b = exits.z; before = insideBefore.z; }
-    if (away.w < best) { a = entries.w; b = exits.w; before = insideBefore.w; }
+    bool second = inside.w > inside.z &&
+                  max(max(inside.z - tc, tc - inside.w), 0.0) < max(max(inside.x - tc, tc - inside.y), 0.0);
+    float a = second ? inside.z : inside.x, b = second ? inside.w : inside.y;
+    float before = second ? inside.y - inside.x : 0.0;
     if (!(b > a)) discard;  // the ray misses the objects, or the host hides them
     float front = a - before;
     float t0 = a, t1 = b;
@@ -141,7 +135,7 @@ void main() {
 #ifdef DENSITY_SLABS
         // From the first entry: across the air between parts too (a concave object
         // of slabs is not exact here).
-        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, entries.x, t0) ;
+        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, inside.x, t0);
 #endif
     }
     if (t1 <= t0) discard;  // the interval misses the sample's slab

@@ -3,11 +3,11 @@
 // objects, in eye distance, stopped by the host's depth.
 //  - segment: [t0, t1] from the nearest front face to the farthest back face
 //    (t0 > t1 where the host hides the objects; t0 < 0 where the ray misses them);
-//  - inside01, inside23: the first four intervals the ray spends inside, from
-//    the peeled entries (front faces) and exits (back faces), so that the air
-//    between two parts of a concave object, or between two objects, holds no
-//    Gaussian and dims nothing (scatter.frag). Closed meshes alternate entry and
-//    exit; past the fourth entry the last interval runs to the farthest back face.
+//  - inside: the first two intervals the ray spends inside, from the peeled
+//    entries (front faces) and exits (back faces), so that the air between two
+//    parts of a concave object, or between two objects, holds no Gaussian and
+//    dims nothing (scatter.frag). Closed meshes alternate entry and exit; the
+//    second interval runs from the second entry to the farthest back face.
 //    An unused interval is (-1, -2).
 #include "gpu_layout.h"
 
@@ -20,8 +20,7 @@ uniform vec2 viewportSize;
 uniform bool cameraInside;  // then the rays start at the eye
 
 layout(location = 0) out vec2 segment;
-layout(location = 1) out vec4 inside01;
-layout(location = 2) out vec4 inside23;
+layout(location = 1) out vec4 inside;
 
 float eyeDistance(float depth, vec2 ndc) {
     vec4 p = inverseProjection * vec4(ndc, 2.0 * depth - 1.0, 1.0);
@@ -34,8 +33,8 @@ void main() {
     float front = texelFetch(frontLayers[0], pixel, 0).r, back = texelFetch(farthestBack, pixel, 0).r;
     float host = texelFetch(hostDepth, pixel, 0).r;
     float hostT = host < 1.0 ? eyeDistance(host, ndc) : 3.4e38;
-    vec2 inside[kMaxRaySegments];
-    for (int k = 0; k < kMaxRaySegments; ++k) inside[k] = vec2(-1.0, -2.0);
+    vec2 intervals[kMaxRaySegments];
+    for (int k = 0; k < kMaxRaySegments; ++k) intervals[k] = vec2(-1.0, -2.0);
     if (back <= 0.0 || (front >= 1.0 && !cameraInside)) {
         segment = vec2(-1.0, -2.0);
     } else {
@@ -55,9 +54,8 @@ void main() {
             float b = k == kMaxRaySegments - 1 ? tEnd : eyeDistance(exit, ndc);
             b = min(b, hostT);
             if (a >= b) break;
-            inside[k] = vec2(a, b);
+            intervals[k] = vec2(a, b);
         }
     }
-    inside01 = vec4(inside[0], inside[1]);
-    inside23 = vec4(inside[2], inside[3]);
+    inside = vec4(intervals[0], intervals[1]);
 }

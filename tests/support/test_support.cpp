@@ -1,5 +1,7 @@
 #include "tests/support/test_support.h"
 
+#include <png.h>
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -84,6 +86,19 @@ std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file)
         rows.push_back(cells);
     }
     return rows;
+}
+
+Png readPng(const std::filesystem::path& file) {
+    Png out;
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&png, file.c_str())) return out;
+    png.format = PNG_FORMAT_RGB;
+    out.rgb.resize(PNG_IMAGE_SIZE(png));
+    if (!png_image_finish_read(&png, nullptr, out.rgb.data(), 0, nullptr)) return Png{};
+    out.width = int(png.width);
+    out.height = int(png.height);
+    return out;
 }
 
 }  // namespace lucent::test

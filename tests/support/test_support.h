@@ -40,6 +40,15 @@ struct RunResult {
 };
 RunResult runLucent(const std::string& args, const std::string& environment = "");
 
+// A PNG decoded by libpng (its simplified API) to 8-bit RGB, rows from the top;
+// width 0 when it cannot be read.
+struct Png {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+    const unsigned char* at(int x, int y) const { return &rgb[(size_t(y) * width + x) * 3]; }
+};
+Png readPng(const std::filesystem::path& file);
+
 // Parses a CSV file, skipping lines starting with '#' and the header line.
 std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file);
 

@@ -32,13 +32,17 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     EXPECT_EQ(state.lights.size(), 1u);
     applyScriptLine(state, "extinction 2.5", "s:5");
     EXPECT_EQ(state.extinctionScale, 2.5f);
-    applyScriptLine(state, "exposure 4", "s:6");
-    EXPECT_EQ(state.exposure, 4.0f);
+    applyScriptLine(state, "exposure -2.5", "s:6");
+    EXPECT_EQ(state.exposureStops, -2.5f);
+    applyScriptLine(state, "panel off", "s:6");
+    EXPECT_FALSE(state.panel);
     applyScriptLine(state, "surface off", "s:7");
     applyScriptLine(state, "scattering off", "s:8");
     EXPECT_FALSE(state.surface || state.scattering);
     applyScriptLine(state, "screenshot a.png", "s:9");
-    EXPECT_EQ(state.screenshots, std::vector<std::string>{"a.png"});
+    applyScriptLine(state, "screenshot b.png panel", "s:9");
+    const std::vector<ViewerState::Screenshot> shots = {{"a.png", false}, {"b.png", true}};
+    EXPECT_EQ(state.screenshots, shots);
     applyScriptLine(state, "quit", "s:10");
     EXPECT_TRUE(state.quit);
 }
@@ -50,7 +54,11 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
         {"light 0 colour 1e31 1 1", "s:1: colour must be finite and within +-1e+30"},
         {"light 0 position 1e19 0 0", "s:1: position must be finite and within +-1e+13"},
         {"extinction inf", "s:1: extinction needs a positive finite number"},
-        {"exposure -1", "s:1: exposure needs a positive finite number"},
+        {"exposure 65", "s:1: exposure needs a number of stops in [-64, 64]"},
+        {"exposure nan", "s:1: exposure needs a number of stops in [-64, 64]"},
+        {"screenshot a.pfm panel", "s:1: a screenshot with the panel is what the window shows: it must be a .png"},
+        {"screenshot a.png all", "s:1: screenshot takes a file name and optionally 'panel'"},
+        {"panel maybe", "s:1: expected on or off"},
         {"zoom 0", "s:1: zoom needs a positive finite number"},
         {"light 7 position 0 0 0", "s:1: no light with that index (there are 1)"},
         {"fly away", "s:1: unknown command 'fly'"},

@@ -2,6 +2,7 @@
 // the light from the right of the sphere to its left between two screenshots.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "core/image.h"
@@ -43,6 +44,56 @@ TEST(Viewer, ScriptedLightMoveChangesTheScreenshotWhereItShould) {
     EXPECT_GT(meanHalf(a, false), 1.5 * meanHalf(a, true));
     EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(b, false));
     EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(a, true));
+}
+
+// The panel is docked beside the view and never covers it: a screenshot with
+// the panel holds the view's own pixels to its right. Exposure is in stops: one
+// more doubles the displayed radiance.
+TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
+    test::ScratchDir dir;
+    const auto scene = dir.write("scene.json", R"({
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 96, "height": 96},
+      "lights": [{"type": "point", "position": [3, 2, 2], "intensity": [40, 40, 40]}],
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+                   "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto view = dir.path() / "view.png", window = dir.path() / "window.png", brighter = dir.path() / "brighter.png";
+    const auto script = dir.write("shots.txt", "exposure -1\nscreenshot " + view.string() + "\nscreenshot " +
+                                                   window.string() + " panel\nexposure 0\nscreenshot " +
+                                                   brighter.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 1024x768x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const test::Png v = test::readPng(view), w = test::readPng(window), b = test::readPng(brighter);
+    ASSERT_EQ(v.width, 96);
+    ASSERT_EQ(v.height, 96);
+    ASSERT_GT(w.width, 96 + 200) << "the window holds the panel beside the view";
+    ASSERT_EQ(w.height, 96);
+    const int panel = w.width - 96;
+    size_t same = 0, panelPixels = 0;
+    for (int y = 0; y < 96; ++y) {
+        for (int x = 0; x < 96; ++x) {
+            bool equal = true;
+            for (int c = 0; c < 3; ++c) equal = equal && std::abs(int(w.at(panel + x, y)[c]) - int(v.at(x, y)[c])) <= 1;
+            same += equal;
+        }
+        for (int x = 0; x < panel; ++x) panelPixels += w.at(x, y)[0] + w.at(x, y)[1] + w.at(x, y)[2] > 0;
+    }
+    EXPECT_EQ(same, size_t(96 * 96)) << "the view's pixels, uncovered, right of the panel";
+    EXPECT_GT(panelPixels, size_t(panel * 96 / 2)) << "the panel is drawn";
+    // +1 stop: twice the linear value wherever neither is clipped or lost in quantisation.
+    auto linear = [](int c) { double s = c / 255.0; return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4); };
+    double ratioSum = 0.0;
+    size_t compared = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const int dim = v.at(x, y)[1], bright = b.at(x, y)[1];
+            if (dim < 60 || bright > 240) continue;
+            ratioSum += linear(bright) / linear(dim);
+            ++compared;
+        }
+    ASSERT_GT(compared, 200u);
+    EXPECT_NEAR(ratioSum / double(compared), 2.0, 0.05);
 }
 
 #ifdef LUCENT_HAVE_OPENCL
