@@ -90,15 +90,6 @@ std::string sceneWith(const std::string& units, const std::string& medium) {
       "lights": [], "objects": [{"mesh": "m.obj", "medium": )" + medium + R"(, "samples": "s.lsf"}]})";
 }
 
-std::string errorOf(const std::string& text) {
-    try {
-        parseSceneText(text, "dir/scene.json");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 TEST(SceneUnits, APresetIsConvertedToTheScenesUnit) {
     auto medium = [](const std::string& units, const std::string& m) {
         return parseSceneText(sceneWith(units, m), "dir/scene.json").objects[0].medium;
@@ -123,19 +114,19 @@ TEST(SceneUnits, APresetIsConvertedToTheScenesUnit) {
 }
 
 TEST(SceneUnits, BadPresetsAndUnitsAreOneClearError) {
-    const std::string unknown = errorOf(sceneWith(R"("units": "mm",)", R"({"preset": "jade"})"));
+    const std::string unknown = test::sceneErrorOf(sceneWith(R"("units": "mm",)", R"({"preset": "jade"})"));
     EXPECT_NE(unknown.find("dir/scene.json: /objects/0/medium/preset: unknown preset 'jade' (valid: apple, chicken1"),
               std::string::npos)
         << unknown;
     EXPECT_NE(unknown.find("pacific-ocean-surface-water)"), std::string::npos) << unknown;
     EXPECT_EQ(unknown.find('\n'), std::string::npos);
-    EXPECT_NE(errorOf(sceneWith("", R"({"preset": "marble"})")).find("a preset needs the scene's top-level \"units\""),
+    EXPECT_NE(test::sceneErrorOf(sceneWith("", R"({"preset": "marble"})")).find("a preset needs the scene's top-level \"units\""),
               std::string::npos);
-    EXPECT_NE(errorOf(sceneWith(R"("units": "inch",)", R"({"sigma_t": 1, "albedo": 0.5})"))
+    EXPECT_NE(test::sceneErrorOf(sceneWith(R"("units": "inch",)", R"({"sigma_t": 1, "albedo": 0.5})"))
                   .find("/units: unknown unit 'inch' (valid: mm, cm, m)"),
               std::string::npos);
     // Without a preset sigma_t and albedo stay required.
-    EXPECT_NE(errorOf(sceneWith(R"("units": "mm",)", R"({"albedo": 0.5})")).find("missing required key 'sigma_t'"),
+    EXPECT_NE(test::sceneErrorOf(sceneWith(R"("units": "mm",)", R"({"albedo": 0.5})")).find("missing required key 'sigma_t'"),
               std::string::npos);
 }
 

@@ -34,15 +34,6 @@ std::string variant(const std::string& from, const std::string& to) {
     return s.replace(at, from.size(), to);
 }
 
-std::string errorOf(const std::string& text) {
-    try {
-        parseSceneText(text, "dir/scene.json");
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 TEST(Scene, ParsesEveryField) {
     const SceneDesc s = parseSceneText(kValid, "dir/scene.json");
     EXPECT_EQ(s.camera.width, 64);
@@ -83,7 +74,7 @@ TEST(Scene, ErrorsNameFileAndJsonPath) {
         {"\"samples\": \"sphere.lsf\"}]", "\"samples\": \"sphere.lsf\"}", "dir/scene.json: malformed JSON"},
     };
     for (const Case& c : cases) {
-        const std::string message = errorOf(variant(c.from, c.to));
+        const std::string message = test::sceneErrorOf(variant(c.from, c.to));
         EXPECT_NE(message.find(c.message), std::string::npos) << "got: " << message << "\nwanted: " << c.message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
     }

@@ -2,6 +2,8 @@
 
 #include <png.h>
 
+#include "core/error.h"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -99,6 +101,15 @@ Png readPng(const std::filesystem::path& file) {
     out.width = int(png.width);
     out.height = int(png.height);
     return out;
+}
+
+std::string sceneErrorOf(const std::string& text) {
+    try {
+        parseSceneText(text, "dir/scene.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 }  // namespace lucent::test

@@ -49,6 +49,9 @@ struct Png {
 };
 Png readPng(const std::filesystem::path& file);
 
+// The error parsing a scene text as "dir/scene.json" gives, or "no error".
+std::string sceneErrorOf(const std::string& text);
+
 // Parses a CSV file, skipping lines starting with '#' and the header line.
 std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file);
 
