@@ -98,7 +98,7 @@ void FrameTargets::draw(const FrameContext& frame) {
                 layer.clearDepth(1.0f);
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
                 glCullFace(exits ? GL_FRONT : GL_BACK);
-                // The first exit has no layer before it: one cleared to 0 lets every face through.
+                // The first exit has no layer before it: the plain depth program keeps the nearest back face.
                 if (exits && k == 0) {
                     glUseProgram(depthProgram_.id());
                 } else {

@@ -1,7 +1,8 @@
 #pragma once
 // The targets every pass of a frame reads (thesis 3.4.1): the host's depth with
 // the opaque blockers drawn in, the nearest front face and the farthest back face
-// of the translucent meshes, and each pixel's ray segment [t0, t1] inside them.
+// of the translucent meshes with the next entries and exits peeled behind them,
+// each pixel's ray segment [t0, t1] inside them and its first two intervals inside.
 #include "runtime/gl.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/gpu_layout.h"
