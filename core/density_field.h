@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/similarity.h"
 
 namespace lucent {
 
@@ -83,5 +84,26 @@ std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int 
                                          const Bounds3& bounds);
 // A float grid of an OpenVDB file, densified over its active bounding box.
 std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName);
+
+// A field given in an object's own space, queried in the world: the object
+// stands where placement puts it. A world segment is placement.scale times as
+// long as its object-space preimage, so its integral is that much larger.
+// Slabs are the object's and need not be normal to a world axis: none is reported
+// (only preprocessing, which runs in object space, asks for them).
+class PlacedDensity final : public DensityField {
+public:
+    PlacedDensity(std::unique_ptr<DensityField> field, const Similarity& placement)
+        : field_(std::move(field)), placement_(placement) {}
+    double at(const Vec3& p) const override { return field_->at(placement_.inversePoint(p)); }
+    double integrate(const Vec3& a, const Vec3& b) const override {
+        return placement_.scale * field_->integrate(placement_.inversePoint(a), placement_.inversePoint(b));
+    }
+    double minimum() const override { return field_->minimum(); }
+    double maximum() const override { return field_->maximum(); }
+
+private:
+    std::unique_ptr<DensityField> field_;
+    Similarity placement_;
+};
 
 }  // namespace lucent

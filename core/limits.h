@@ -13,6 +13,10 @@ inline constexpr double kMaxCoordinate = 1e13;
 // An object's bounding-box diagonal, in scene units: below this, single-precision
 // ray casting and rasterisation lose the object.
 inline constexpr double kMinObjectSize = 1e-9;
+// An object's uniform scale (the scene's "transform"): the placed object must
+// still lie within kMaxCoordinate and above kMinObjectSize, checked on loading.
+inline constexpr double kMinScale = 1e-9;
+inline constexpr double kMaxScale = 1e9;
 // Light intensity (W/sr), irradiance (W/m^2), sigma_t and densities: the images
 // and sample files store single-precision floats.
 inline constexpr double kMaxMagnitude = 1e30;

@@ -142,6 +142,37 @@ SurfaceDesc parseSurface(Node n) {
     return s;
 }
 
+// scale, then rotate, then translate, each optional. A scale is one number, or
+// three equal ones: the sample file's attenuation holds for uniform scales only.
+Similarity parseTransform(Node n) {
+    n.requireObject();
+    double scale = 1.0, degrees = 0.0;
+    Vec3 axis(0.0, 0.0, 1.0), translate(0.0);
+    if (n.has("scale")) {
+        Node s = n.child("scale");
+        if (s.json().is_array()) {
+            if (s.arraySize() != 3) s.fail("must be a number or an array of 3 equal numbers");
+            scale = s.element(0).number(kMinScale, kMaxScale);
+            for (size_t i = 1; i < 3; ++i)
+                if (s.element(i).number(kMinScale, kMaxScale) != scale)
+                    s.fail("a non-uniform scale is not supported: the sample file's attenuation holds for uniform "
+                           "scales only (scale the mesh itself and preprocess it again)");
+        } else {
+            scale = s.number(kMinScale, kMaxScale);
+        }
+    }
+    if (n.has("rotate")) {
+        Node r = n.child("rotate");
+        r.requireObject();
+        axis = r.child("axis").direction();
+        degrees = r.child("degrees").number(-1e6, 1e6);
+        r.rejectUnknownKeys();
+    }
+    if (n.has("translate")) translate = n.child("translate").point();
+    n.rejectUnknownKeys();
+    return makeSimilarity(scale, axis, degrees, translate);
+}
+
 ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Units& units) {
     n.requireObject();
     ObjectDesc o;
@@ -152,6 +183,7 @@ ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Uni
     o.medium = parseMedium(medium, sceneFile, units);
     if (n.has("surface")) o.surface = parseSurface(n.child("surface"));
     o.samples = resolve(sceneFile, n.child("samples").string());
+    if (n.has("transform")) o.transform = parseTransform(n.child("transform"));
     n.rejectUnknownKeys();
     Fingerprint fp;
     fp.addFile(o.mesh);
@@ -204,6 +236,11 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     for (size_t i = 0; i < objects.arraySize(); ++i) scene.objects.push_back(parseObject(objects.element(i), file, units));
     if (root.has("render")) scene.render = parseRender(root.child("render"));
     root.rejectUnknownKeys();
+    return scene;
+}
+
+SceneDesc withoutTransforms(SceneDesc scene) {
+    for (ObjectDesc& o : scene.objects) o.transform = Similarity{};
     return scene;
 }
 

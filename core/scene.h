@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/similarity.h"
 
 namespace lucent {
 
@@ -54,6 +55,7 @@ struct ObjectDesc {
     MediumDesc medium;
     std::optional<SurfaceDesc> surface;
     std::filesystem::path samples;
+    Similarity transform;  // object to world; not part of the fingerprint: one sample file serves every placement
     uint64_t fingerprint = 0;  // of the mesh, blocker and grid bytes and the medium: ties a sample file to it
 };
 
@@ -74,5 +76,8 @@ struct SceneDesc {
 // Throws Error("FILE: /json/path: problem"). Paths inside are made relative to the scene file.
 SceneDesc parseScene(const std::filesystem::path& file);
 SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file);
+
+// The scene with every object in its own space: what preprocessing works in.
+SceneDesc withoutTransforms(SceneDesc scene);
 
 }  // namespace lucent

@@ -20,11 +20,32 @@ std::unique_ptr<DensityField> makeDensity(const DensityDesc& d, const Bounds3& o
     return nullptr;
 }
 
+// The mesh as placed in the world, which must stay within the coordinates and
+// above the size Lucent computes right (core/limits.h).
+TriangleMesh placedMesh(const TriangleMesh& mesh, const Similarity& placement, const std::filesystem::path& file) {
+    TriangleMesh placed = mesh;
+    for (Vec3& p : placed.positions) {
+        p = placement.point(p);
+        if (!isFinite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+            throw Error(file.string(), "the transform moves a vertex beyond the 1e13 coordinates Lucent supports "
+                                       "(docs/robustness.md)");
+    }
+    if (!(placed.bounds().diagonal() >= kMinObjectSize))
+        throw Error(file.string(), "the transform shrinks the object below the 1e-9 size Lucent supports "
+                                   "(docs/robustness.md)");
+    return placed;
+}
+
 }  // namespace
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : desc_(desc), mesh_(loadClosedMesh(desc.mesh, warnings)), boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
-    density_ = makeDensity(desc.medium.density, mesh_.bounds());
+    : desc_(desc), objectMesh_(loadClosedMesh(desc.mesh, warnings)),
+      mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)),
+      boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
+    if (!placed()) objectMesh_ = TriangleMesh{};
+    // The density is the object's: given in its own space, and carried with it.
+    density_ = makeDensity(desc.medium.density, objectMesh().bounds());
+    if (placed()) density_ = std::make_unique<PlacedDensity>(std::move(density_), desc.transform);
     // sigma_t times the density is what the sample file and the GPU store, in single precision.
     const double peak = std::max({desc.medium.sigmaT.r, desc.medium.sigmaT.g, desc.medium.sigmaT.b}) * density_->maximum();
     if (peak > kMaxMagnitude) {
@@ -35,6 +56,10 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& war
     }
     for (const auto& file : desc.medium.blockers) {
         TriangleMesh blocker = loadClosedMesh(file, warnings);
+        if (placed()) {
+            objectBlockerMeshes_.push_back(blocker);
+            blocker = placedMesh(blocker, desc.transform, file);
+        }
         for (const Vec3& p : blocker.positions)
             if (!boundary_.contains(p))
                 throw Error(file.string(), "blocker is not inside its object '" + desc.name + "'");

@@ -2,7 +2,10 @@
 // A translucent object ready for light transport queries: its boundary mesh and
 // ray caster, its density field and its opaque blockers. Optical depth is
 // sigma_t times the density path integral computed here, so one ray serves all
-// three colour channels.
+// three colour channels. Every query is in world space: the object stands where
+// its transform puts it. Preprocessing and the runtime's samples live in the
+// object's own space (objectMesh(), placement()), so one sample file serves
+// every placement.
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,11 +19,18 @@ namespace lucent {
 
 class VolumeObject {
 public:
-    // Loads and validates the mesh, blockers and density of desc.
+    // Loads and validates the mesh, blockers and density of desc, placed by desc.transform.
     VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings);
 
     const ObjectDesc& desc() const { return desc_; }
-    const TriangleMesh& mesh() const { return mesh_; }
+    const TriangleMesh& mesh() const { return mesh_; }  // in the world
+    // Object to world, and the mesh and blockers as their files give them.
+    const Similarity& placement() const { return desc_.transform; }
+    bool placed() const { return !desc_.transform.isIdentity(); }
+    const TriangleMesh& objectMesh() const { return placed() ? objectMesh_ : mesh_; }
+    const std::vector<TriangleMesh>& objectBlockerMeshes() const {
+        return placed() ? objectBlockerMeshes_ : blockerMeshes_;
+    }
     const MeshRaycaster& boundary() const { return boundary_; }
     const DensityField& density() const { return *density_; }
 
@@ -52,12 +62,14 @@ public:
 
 private:
     ObjectDesc desc_;
+    TriangleMesh objectMesh_;  // only when placed
     TriangleMesh mesh_;
     MeshRaycaster boundary_;
     std::vector<std::array<Vec3, 3>> cornerNormals_;
     std::unique_ptr<DensityField> density_;
     std::vector<MeshRaycaster> blockers_;
     std::vector<TriangleMesh> blockerMeshes_;
+    std::vector<TriangleMesh> objectBlockerMeshes_;  // only when placed
 };
 
 // exp(-sigma_t * path) per channel, exactly 0 through a blocker (path = infinity)

@@ -346,6 +346,9 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     PreprocessTimings local;
     PreprocessTimings& t = timings ? *timings : local;
     Stopwatch clock;
+    if (object.placed())
+        throw Error(object.desc().mesh.string(), "samples are made in the object's own space: preprocess it without "
+                                                 "its transform (withoutTransforms, core/scene.h)");
     const MediumDesc& medium = object.desc().medium;
     const TriangleMesh& mesh = object.mesh();
     if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))

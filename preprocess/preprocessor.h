@@ -41,6 +41,7 @@ struct PreprocessTimings {
     double total() const { return layers + firstMoments + divergence + poissonDisk + projection; }
 };
 
+// In the object's own space: object must not be placed (withoutTransforms, core/scene.h).
 SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings,
                            PreprocessTimings* timings = nullptr);
 

@@ -3,6 +3,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "core/error.h"
 #include "runtime/internal/frame_targets.h"
@@ -15,9 +17,9 @@
 namespace lucent {
 
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples) {
-    TranslucentObject t{&object.mesh(), &samples, object.desc().medium.g, object.desc().surface, {},
-                        object.desc().medium.albedo};
-    for (const TriangleMesh& blocker : object.blockerMeshes()) t.blockers.push_back(&blocker);
+    TranslucentObject t{&object.objectMesh(), &samples, object.desc().medium.g, object.desc().surface, {},
+                        object.desc().medium.albedo, object.placement()};
+    for (const TriangleMesh& blocker : object.objectBlockerMeshes()) t.blockers.push_back(&blocker);
     return t;
 }
 
@@ -52,6 +54,7 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     GpuObject o;
     o.mesh = std::make_unique<GpuMesh>(*object.mesh);
     o.samples = std::make_unique<GpuSamples>(*object.samples);
+    o.placement = object.placement;
     o.g = object.g;
     o.surface = object.surface;
     o.boundary = std::make_unique<MeshRaycaster>(*object.mesh);
@@ -61,6 +64,23 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     o.albedo = object.albedo;
     o.opticallyThick = object.samples->parameters.scheme == SampleScheme::OpticallyThick;
     impl_->objects.push_back(std::move(o));
+}
+
+size_t ScatteringRenderer::objectCount() const { return impl_->objects.size(); }
+
+void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement) {
+    if (index >= impl_->objects.size())
+        throw Error("setPlacement: no object " + std::to_string(index) + " (" +
+                    std::to_string(impl_->objects.size()) + " added)");
+    if (!(placement.scale > 0.0) || !std::isfinite(placement.scale) || !isFinite(placement.translation))
+        throw Error("setPlacement: the scale must be positive and finite and the translation finite");
+    GpuObject& o = impl_->objects[index];
+    if (placement.scale == o.placement.scale && placement.rotation == o.placement.rotation &&
+        placement.translation == o.placement.translation)
+        return;
+    o.placement = placement;
+    o.samples->receivedValid = false;
+    o.shadowsValid = false;
 }
 
 void ScatteringRenderer::addScatteringGrid(const ScatteringGrid& grid) { impl_->grids->add(grid); }

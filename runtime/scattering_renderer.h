@@ -23,14 +23,16 @@ namespace lucent {
 
 struct TranslucentObject {
     const TriangleMesh* mesh;            // boundary, drawn for the surface and the depth passes
-    const SampleSet* samples;            // from lucent preprocess
+    const SampleSet* samples;            // from lucent preprocess, in the mesh's space
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
     Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
+    Similarity placement;                // where the mesh, blockers and samples stand in the world
 };
 
-// A scene object with its sample set, as the renderer takes it (both must outlive the renderer).
+// A scene object with its sample set, as the renderer takes it (both must outlive
+// the renderer): its mesh and blockers in its own space, placed by its transform.
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples);
 
 struct DrawOptions {
@@ -53,7 +55,14 @@ public:
     ScatteringRenderer(const ScatteringRenderer&) = delete;
     ScatteringRenderer& operator=(const ScatteringRenderer&) = delete;
 
+    // Objects are numbered in the order they are added, from 0.
     void addObject(const TranslucentObject& object);
+    size_t objectCount() const;
+    // Moves, turns or scales object index (any similarity, every frame if need be:
+    // nothing is uploaded; isotropic media recompute their samples' light once).
+    // A multiple-scattering grid was solved for where the objects stood: it does
+    // not follow (clear it, solve again).
+    void setPlacement(size_t index, const Similarity& placement);
     void setLights(const std::vector<Light>& lights);
     // Light scattered twice or more, as a volumetric method solved it for the
     // current lights (hybrid/: --method lbl); drawn after single scattering.

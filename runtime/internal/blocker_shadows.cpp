@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "runtime/internal/blocker_shadow_views.h"
 #include "runtime/internal/gpu_layout.h"
+#include "runtime/internal/placement_uniforms.h"
 
 namespace lucent {
 
@@ -32,7 +33,7 @@ void BlockerShadows::release() {
     layers_ = size_ = 0;
 }
 
-void BlockerShadows::render(const std::vector<Light>& lights) {
+void BlockerShadows::render(const std::vector<Light>& lights, const Similarity& placement) {
     const int layers = blockerShadowLayers(lights.size());
     const int size = blockerShadowResolution(lights.size());
     if (layers != layers_ || size != size_) {
@@ -47,7 +48,11 @@ void BlockerShadows::render(const std::vector<Light>& lights) {
         glCreateBuffers(1, &views_);
         glNamedBufferStorage(views_, GLsizeiptr(layers * sizeof(glm::mat4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
-    const std::vector<glm::mat4> views = blockerShadowViews(lights, bounds_);
+    Bounds3 world;  // the placed box's corners bound the placed blockers
+    for (int corner = 0; corner < 8; ++corner)
+        world.extend(placement.point(Vec3(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
+                                          corner & 4 ? bounds_.max.z : bounds_.min.z)));
+    const std::vector<glm::mat4> views = blockerShadowViews(lights, world);
     glNamedBufferSubData(views_, 0, GLsizeiptr(views.size() * sizeof(glm::mat4)), views.data());
 
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
@@ -57,6 +62,7 @@ void BlockerShadows::render(const std::vector<Light>& lights) {
     glEnable(GL_BLEND);
     glBlendEquation(GL_MIN);
     glUseProgram(program_.id());
+    setMeshPlacement(program_, placement);
     const float far = 3.0e38f;
     for (int layer = 0; layer < layers; ++layer) {
         glNamedFramebufferTextureLayer(framebuffer_, GL_COLOR_ATTACHMENT0, texture_, 0, layer);

@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "core/similarity.h"
 #include "core/triangle_mesh.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/gpu_mesh.h"
@@ -28,15 +29,16 @@ public:
     BlockerShadows(const BlockerShadows&) = delete;
     BlockerShadows& operator=(const BlockerShadows&) = delete;
 
-    // Renders the maps for these lights (when they change). Leaves the draw
+    // Renders the maps for these lights (when they or the placement change), the
+    // blockers placed in the world as their object stands. Leaves the draw
     // framebuffer, viewport and blending for the caller to set again.
-    void render(const std::vector<Light>& lights);
+    void render(const std::vector<Light>& lights, const Similarity& placement);
     // The distance texture on this unit, the layer matrices on kBindingShadowViews.
     void bind(GLuint textureUnit) const;
 
 private:
     std::vector<std::unique_ptr<GpuMesh>> meshes_;
-    Bounds3 bounds_;
+    Bounds3 bounds_;  // of the blockers, in object space
     GlProgram program_;
     GLuint texture_ = 0, framebuffer_ = 0, views_ = 0;
     int layers_ = 0, size_ = 0;

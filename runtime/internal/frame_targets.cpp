@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "runtime/internal/placement_uniforms.h"
 
 namespace lucent {
 
@@ -33,8 +34,11 @@ FrameTargets::FrameTargets() { glCreateVertexArrays(1, &emptyVao_); }
 
 FrameTargets::~FrameTargets() { glDeleteVertexArrays(1, &emptyVao_); }
 
-void FrameTargets::drawMeshes(const FrameContext& frame) {
-    for (const GpuObject& o : frame.objects) o.mesh->draw();
+void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& program) {
+    for (const GpuObject& o : frame.objects) {
+        setMeshPlacement(program, o.placement);
+        o.mesh->draw();
+    }
 }
 
 void FrameTargets::draw(const FrameContext& frame) {
@@ -68,8 +72,10 @@ void FrameTargets::draw(const FrameContext& frame) {
     glUseProgram(depthProgram_.id());
     glUniformMatrix4fv(depthProgram_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
-    for (const GpuObject& o : frame.objects)
+    for (const GpuObject& o : frame.objects) {
+        setMeshPlacement(depthProgram_, o.placement);
         for (const auto& blocker : o.blockers) blocker->draw();
+    }
 
     // Where each pixel's ray enters the objects (nearest front face) and finally
     // leaves them (farthest back face).
@@ -77,12 +83,12 @@ void FrameTargets::draw(const FrameContext& frame) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frontLayers_[0].framebuffer());
     glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
-    drawMeshes(frame);
+    drawMeshes(frame, depthProgram_);
     back_.clearDepth(0.0f);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, back_.framebuffer());
     glCullFace(GL_FRONT);
     glDepthFunc(GL_GREATER);
-    drawMeshes(frame);
+    drawMeshes(frame, depthProgram_);
     glDepthFunc(GL_LESS);
     if (frame.options.scattering) {
         // The later entries and the exits, nearest first, by depth peeling: each
@@ -99,13 +105,14 @@ void FrameTargets::draw(const FrameContext& frame) {
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
                 glCullFace(exits ? GL_FRONT : GL_BACK);
                 // The first exit has no layer before it: the plain depth program keeps the nearest back face.
-                if (exits && k == 0) {
+                const bool plain = exits && k == 0;
+                if (plain) {
                     glUseProgram(depthProgram_.id());
                 } else {
                     glUseProgram(peel.id());
                     glBindTextureUnit(0, (exits ? backLayers_[k - 1] : frontLayers_[k - 1]).texture());
                 }
-                drawMeshes(frame);
+                drawMeshes(frame, plain ? depthProgram_ : peel);
             }
     }
     glCullFace(GL_BACK);
@@ -127,7 +134,7 @@ void FrameTargets::draw(const FrameContext& frame) {
     // A camera inside an object sees no front face in front of it: its rays start inside.
     bool cameraInside = false;
     for (const GpuObject& o : frame.objects)
-        cameraInside = cameraInside || o.boundary->contains(Vec3(view.cameraPosition));
+        cameraInside = cameraInside || o.boundary->contains(o.placement.inversePoint(Vec3(view.cameraPosition)));
     glUniform1i(p.uniform("cameraInside"), cameraInside ? 1 : 0);
     glBindTextureUnit(0, back_.texture());
     glBindTextureUnit(1, host_.texture());

@@ -42,8 +42,8 @@ public:
     // Draws the targets for this frame; leaves depth testing on with GL_LESS,
     // back faces culled and the last target bound.
     void draw(const FrameContext& frame);
-    // Draws every object's boundary mesh.
-    static void drawMeshes(const FrameContext& frame);
+    // Draws every object's boundary mesh with program (mesh.vert), each where it stands.
+    static void drawMeshes(const FrameContext& frame, const GlProgram& program);
 
     GLuint frontDepth() const { return frontLayers_[0].texture(); }
     GLuint raySegments() const { return segments_.texture(); }

@@ -26,10 +26,11 @@ class FrameTargets;
 struct GpuObject {
     std::unique_ptr<GpuMesh> mesh;
     std::unique_ptr<GpuSamples> samples;
+    Similarity placement;  // object to world; mesh, blockers and samples stay in object space
     double g = 0.0;
     std::optional<SurfaceDesc> surface;
     std::vector<std::unique_ptr<GpuMesh>> blockers;
-    std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside?
+    std::unique_ptr<MeshRaycaster> boundary;  // is the camera inside? (object space)
     std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
     bool shadowsValid = false;
     Rgb albedo{0.0};

@@ -11,6 +11,20 @@ uniform int channels;  // 1 (grey sigma_t) or 3
 uniform float g;       // Henyey-Greenstein mean cosine
 uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi becomes psi^k
 
+// The samples are the object's, in its own space; it stands scaled by modelScale,
+// rotated by modelRotation, then moved by modelTranslation (placement_uniforms.h).
+// Directions rotate into the object's space to read its SH; lengths, and so every
+// optical depth, grow by modelScale: psi becomes psi^(k modelScale).
+uniform mat3 modelRotation;
+uniform vec3 modelTranslation;
+uniform float modelScale;
+
+vec3 placed(vec3 objectPoint) { return modelTranslation + modelScale * (modelRotation * objectPoint); }
+vec3 sampleCentre(int i) { return placed(samples[i].centreWidth.xyz); }
+float sampleWidth(int i) { return modelScale * samples[i].centreWidth.w; }
+vec3 toObject(vec3 worldDirection) { return worldDirection * modelRotation; }  // the transpose's product
+float attenuationExponent() { return extinctionScale * modelScale; }
+
 const float PI = 3.14159265358979;
 
 // Blocker shadows (runtime/internal/blocker_shadows.h), for samples whose psi leaves the
@@ -61,7 +75,7 @@ float blockerVisibility(int j, vec3 x) {
 }
 uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
-// Distance out of the sample's boundary ball along d (preprocess/sh_projection.cpp,
+// Distance, in object units, out of the sample's boundary ball along d (object space) (preprocess/sh_projection.cpp,
 // ballExitDistance), negative when d never leaves it.
 float ballExitDistance(int sampleIndex, vec3 d) {
     vec4 ball = samples[sampleIndex].ball;
@@ -82,11 +96,12 @@ vec3 ballTransmittance(int sampleIndex, vec3 d) {
     return s < 0.0 ? vec3(0.0) : share * exp(-samples[sampleIndex].extinction.rgb * s);
 }
 
-// psi_i(d) per channel, clamped to the range a transmittance can take: the
+// psi_i(d) per channel for a world direction d, clamped to the range a transmittance can take: the
 // half-space transmittance plus the SH expansion of the rest (real SH with the
 // Condon-Shortley phase, as core/spherical_harmonics.cpp) summed on the fly,
 // without storing the basis.
-vec3 attenuation(int sampleIndex, vec3 d) {
+vec3 attenuation(int sampleIndex, vec3 worldDirection) {
+    vec3 d = toObject(worldDirection);
     int n = shOrder * shOrder;
     int base = sampleIndex * channels * n;
     vec3 psi = vec3(0.0);
@@ -123,7 +138,8 @@ vec3 attenuation(int sampleIndex, vec3 d) {
     }
     if (channels == 1) psi = vec3(psi.r);
     psi = clamp(psi + ballTransmittance(sampleIndex, d), 0.0, 1.0);
-    return extinctionScale == 1.0 ? psi : pow(psi, vec3(extinctionScale));
+    float k = attenuationExponent();
+    return k == 1.0 ? psi : pow(psi, vec3(k));
 }
 
 float henyeyGreenstein(float cosTheta) {
@@ -138,17 +154,20 @@ float henyeyGreenstein(float cosTheta) {
 // with depth far faster than along w. The part of psi the SH hold has an unknown
 // exit, and takes w, the derivative only along w. The two are weighted by their
 // share of psi (the log-gradient of a sum).
+// w is a world direction; the ball is the object's, so it is met in object space.
 vec3 pathGradient(int i, vec3 w, float psi) {
     vec4 ball = samples[i].ball;
-    float s = ballExitDistance(i, w);
+    vec3 wo = toObject(w);
+    float s = ballExitDistance(i, wo);
     if (ball.w < 0.0 || s < 0.0 || psi <= 0.0) return w;
     // m at e = b + s w: from the ball's centre b + (1/curvature - depth) (-n), or n when flat.
     float curvature = samples[i].region.z;
-    vec3 m = curvature > 0.0 ? normalize((1.0 - curvature * ball.w) * ball.xyz + curvature * s * w) : ball.xyz;
-    float cosine = max(dot(w, m), 0.05);
-    float own = ballTransmittance(i, w).r;
-    if (extinctionScale != 1.0) own = pow(own, extinctionScale);
-    return mix(w, m / cosine, clamp(own / psi, 0.0, 1.0));
+    vec3 m = curvature > 0.0 ? normalize((1.0 - curvature * ball.w) * ball.xyz + curvature * s * wo) : ball.xyz;
+    float cosine = max(dot(wo, m), 0.05);
+    float own = ballTransmittance(i, wo).r;
+    float k = attenuationExponent();
+    if (k != 1.0) own = pow(own, k);
+    return mix(w, modelRotation * m / cosine, clamp(own / psi, 0.0, 1.0));
 }
 
 // What a sample receives from the lights: the light at its centre, and how it
@@ -160,8 +179,8 @@ vec3 pathGradient(int i, vec3 w, float psi) {
 // The light sample i receives, with the phase function towards toCamera (any
 // vector when g = 0, where p is the constant 1 / (4 pi)).
 Received receivedLight(int i, vec3 toCamera) {
-    vec3 centre = samples[i].centreWidth.xyz;
-    float width = samples[i].centreWidth.w;
+    vec3 centre = sampleCentre(i);
+    float width = sampleWidth(i);
     vec3 received = vec3(0.0), toward = vec3(0.0), falloff = vec3(0.0);
     float total = 0.0;
     for (int j = 0; j < lightCount; ++j) {

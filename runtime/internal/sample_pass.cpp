@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gpu_layout.h"
+#include "runtime/internal/placement_uniforms.h"
 
 namespace lucent {
 namespace {
@@ -36,14 +37,13 @@ SamplePass::SamplePass(double cutoff) : cutoffSigmas_(std::sqrt(2.0 * std::log(1
 void SamplePass::prepare(FrameContext& frame) {
     for (GpuObject& o : frame.objects)
         if (o.shadows && !o.shadowsValid) {
-            o.shadows->render(frame.lights.lights);
+            o.shadows->render(frame.lights.lights, o.placement);
             o.shadowsValid = true;
         }
 }
 
 void SamplePass::setFrameUniforms(const FrameContext& frame) const {
     const ViewSetup& view = frame.view;
-    const glm::mat3 viewToWorld = glm::transpose(glm::mat3(view.view));
     // View-space direction through pixel (x, y) at z = -1 for this projection.
     const glm::mat4& P = view.projection;
     const glm::vec4 pixelToView(2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
@@ -53,7 +53,6 @@ void SamplePass::setFrameUniforms(const FrameContext& frame) const {
         glProgramUniformMatrix4fv(id, program->uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
         glProgramUniformMatrix4fv(id, program->uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
         glProgramUniform3fv(id, program->uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
-        glProgramUniformMatrix3fv(id, program->uniform("viewToWorld"), 1, GL_FALSE, glm::value_ptr(viewToWorld));
         glProgramUniform4fv(id, program->uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
         glProgramUniform1i(id, program->uniform("lightCount"), frame.lights.count);
         glProgramUniform1f(id, program->uniform("cutoffSigmas"), float(cutoffSigmas_));
@@ -92,9 +91,16 @@ void SamplePass::draw(FrameContext& frame) {
     setFrameUniforms(frame);
     glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
     glBindTextureUnit(gpu::kUnitInsideSegments, frame.targets.insideSegments());
+    const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
         const GlProgram& p = slabs.empty() ? scatterProgram_ : scatterSlabsProgram_;
+        setSamplePlacement(p, o.placement);
+        setSamplePlacement(receivedProgram_, o.placement);
+        const glm::vec3 objectCamera(o.placement.inversePoint(Vec3(frame.view.cameraPosition)));
+        const glm::mat3 viewToObject(glm::transpose(o.placement.rotation) * viewToWorld / o.placement.scale);
+        glProgramUniform3fv(p.id(), p.uniform("objectCamera"), 1, glm::value_ptr(objectCamera));
+        glProgramUniformMatrix3fv(p.id(), p.uniform("viewToObject"), 1, GL_FALSE, glm::value_ptr(viewToObject));
         o.samples->bind();
         if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
         for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&receivedProgram_)})

@@ -18,8 +18,11 @@ in GeometryOut {
 
 uniform sampler2D insideSegments;  // per pixel, the first two intervals inside the objects (segment.frag)
 uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y sy + oy, -1)
-uniform mat3 viewToWorld;
-uniform vec3 cameraPosition;
+// The density slabs are the object's: met with the camera and the ray's direction
+// in its own space, the direction divided by the object's scale so that the ray's
+// parameter stays the view's distance (runtime/internal/placement_uniforms.h).
+uniform vec3 objectCamera;
+uniform mat3 viewToObject;
 uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
 uniform int channels;           // 1: one gradient serves all three channels
 uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
@@ -128,7 +131,7 @@ void main() {
     vec3 slabsBefore = vec3(0.0);
     if (regionAxis < 3) {
         // The part of the ray inside the sample's density slab.
-        float o = cameraPosition[regionAxis], d = (viewToWorld * dir)[regionAxis];
+        float o = objectCamera[regionAxis], d = (viewToObject * dir)[regionAxis];
         vec2 span = slabInterval(f.region, o, d);
         t0 = max(t0, span.x);
         t1 = min(t1, span.y);

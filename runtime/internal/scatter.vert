@@ -50,12 +50,12 @@ const float kMaxGradientTimesWidth = 3.0;
 
 void main() {
     int i = gl_VertexID;
-    vec3 centre = samples[i].centreWidth.xyz;
-    float s = samples[i].centreWidth.w;
+    vec3 centre = sampleCentre(i);
+    float s = sampleWidth(i);
     vec3 toCamera = normalize(cameraPosition - centre);
     Received received = receivedIsCached ? cachedReceived[i] : receivedLight(i, toCamera);
     v.viewCentre = (view * vec4(centre, 1.0)).xyz;
-    v.viewImage = (view * vec4(samples[i].image.xyz, 1.0)).xyz;
+    v.viewImage = (view * vec4(placed(samples[i].image.xyz), 1.0)).xyz;
     v.width = s;
     v.region = samples[i].region.xy;
     v.extinction = extinctionScale * samples[i].extinction.rgb;

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "runtime/internal/frame_targets.h"
+#include "runtime/internal/placement_uniforms.h"
 
 namespace lucent {
 
@@ -30,6 +31,7 @@ void SurfacePass::draw(FrameContext& frame) {
             glUniform3fv(p.uniform("diffuse"), 1, glm::value_ptr(glm::vec3(o.surface->diffuse)));
             glUniform3fv(p.uniform("specular"), 1, glm::value_ptr(glm::vec3(o.surface->specular)));
             glUniform1f(p.uniform("shininess"), float(o.surface->shininess));
+            setMeshPlacement(p, o.placement);
             o.mesh->draw();
         }
     }
@@ -42,6 +44,7 @@ void SurfacePass::draw(FrameContext& frame) {
             if (!o.opticallyThick) continue;
             glUniform3fv(p.uniform("albedo"), 1, glm::value_ptr(glm::vec3(o.albedo)));
             glUniform1f(p.uniform("g"), float(o.g));
+            setMeshPlacement(p, o.placement);
             o.mesh->draw();
         }
     }

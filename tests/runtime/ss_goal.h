@@ -20,10 +20,12 @@ inline double opticalRadius(const VolumeObject& object) {
 
 // Relative RMSE of luminance: tau <= 0.5: 5%; tau <= 2: 10%;
 // thicker: 25% (the sphere at sigma_t 8; thicker objects are skins, 1-14%).
+inline double ssGoalForOpticalRadius(double tau) { return tau <= 0.5 ? 0.05 : tau <= 2.0 ? 0.10 : 0.25; }
+
 inline double ssGoalRelativeRmse(const std::vector<VolumeObject>& objects) {
     double tau = 0.0;
     for (const auto& o : objects) tau = std::max(tau, opticalRadius(o));
-    return tau <= 0.5 ? 0.05 : tau <= 2.0 ? 0.10 : 0.25;
+    return ssGoalForOpticalRadius(tau);
 }
 
 }  // namespace lucent::test
