@@ -17,7 +17,10 @@ struct Similarity {
     glm::dmat3 rotation{1.0};  // proper rotation (det +1), columns the object's axes in the world
     Vec3 translation{0.0};
 
-    bool isIdentity() const { return scale == 1.0 && rotation == glm::dmat3(1.0) && translation == Vec3(0.0); }
+    bool operator==(const Similarity& o) const {
+        return scale == o.scale && rotation == o.rotation && translation == o.translation;
+    }
+    bool isIdentity() const { return *this == Similarity{}; }
     // Object space to world space.
     Vec3 point(const Vec3& p) const { return translation + scale * (rotation * p); }
     Vec3 direction(const Vec3& d) const { return rotation * d; }

@@ -75,9 +75,7 @@ void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement)
     if (!(placement.scale > 0.0) || !std::isfinite(placement.scale) || !isFinite(placement.translation))
         throw Error("setPlacement: the scale must be positive and finite and the translation finite");
     GpuObject& o = impl_->objects[index];
-    if (placement.scale == o.placement.scale && placement.rotation == o.placement.rotation &&
-        placement.translation == o.placement.translation)
-        return;
+    if (placement == o.placement) return;
     o.placement = placement;
     o.samples->receivedValid = false;
     o.shadowsValid = false;

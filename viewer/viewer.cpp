@@ -119,6 +119,87 @@ void lightsPanel(ViewerState& state) {
     }
 }
 
+// The selected object's placement: which object, where it stands, its scale,
+// and turns of 15 degrees about the world's axes through its origin.
+void objectsPanel(ViewerState& state, const LoadedScene& loaded) {
+    if (state.placements.empty()) return;
+    int selected = int(state.selected);
+    std::string names;
+    for (const VolumeObject& o : loaded.objects) names += o.desc().name + '\0';
+    ImGui::Combo("object", &selected, names.c_str());
+    state.selected = size_t(selected);
+    Similarity& p = state.placements[state.selected];
+    glm::vec3 position(p.translation);
+    if (ImGui::DragFloat3("position", glm::value_ptr(position), 0.01f)) {
+        p.translation = Vec3(position);
+        state.placementsChanged = true;
+    }
+    float scale = float(p.scale);
+    if (ImGui::SliderFloat("scale", &scale, 0.1f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic) && scale > 0.0f) {
+        p.scale = scale;
+        state.placementsChanged = true;
+    }
+    const char* axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        ImGui::PushID(a);
+        for (const double degrees : {-15.0, 15.0}) {
+            if (degrees > 0.0) ImGui::SameLine();
+            if (ImGui::Button(degrees < 0.0 ? "-15" : "+15")) {
+                Vec3 axis(0.0);
+                axis[a] = 1.0;
+                p.rotation = makeSimilarity(1.0, axis, degrees, Vec3(0.0)).rotation * p.rotation;
+                state.placementsChanged = true;
+            }
+        }
+        ImGui::SameLine();
+        ImGui::Text("turn about %s", axes[a]);
+        ImGui::PopID();
+    }
+}
+
+// The scene's bounds with each object where it now stands (the depth range hugs them).
+Bounds3 placedBounds(const LoadedScene& loaded, const std::vector<Similarity>& placements) {
+    Bounds3 bounds;
+    for (size_t i = 0; i < loaded.objects.size(); ++i) {
+        const Bounds3 own = loaded.objects[i].objectMesh().bounds();
+        for (int corner = 0; corner < 8; ++corner)
+            bounds.extend(placements[i].point(Vec3(corner & 1 ? own.max.x : own.min.x, corner & 2 ? own.max.y : own.min.y,
+                                                   corner & 4 ? own.max.z : own.min.z)));
+    }
+    return bounds;
+}
+
+// The objects as the hybrid solves them: where they now stand. One moved since
+// the scene was read is loaded again there (mesh, blockers, density), once per
+// placement; the others are the scene's own.
+class PlacedObjects {
+public:
+    explicit PlacedObjects(const LoadedScene& loaded) : loaded_(loaded), moved_(loaded.objects.size()) {}
+    std::vector<const VolumeObject*> at(const std::vector<Similarity>& placements) {
+        std::vector<const VolumeObject*> objects;
+        std::vector<std::string> warnings;
+        for (size_t i = 0; i < loaded_.objects.size(); ++i) {
+            const VolumeObject& own = loaded_.objects[i];
+            if (placements[i] == own.placement()) {
+                objects.push_back(&own);
+                continue;
+            }
+            if (!moved_[i] || !(moved_[i]->placement() == placements[i])) {
+                ObjectDesc desc = own.desc();
+                desc.transform = placements[i];
+                moved_[i] = std::make_unique<VolumeObject>(desc, warnings);
+            }
+            objects.push_back(moved_[i].get());
+        }
+        return objects;
+    }
+
+private:
+    const LoadedScene& loaded_;
+    // Replaced only when the object moves, which ends any solve begun with it.
+    std::vector<std::unique_ptr<VolumeObject>> moved_;
+};
+
 }  // namespace
 
 // Voxels along each object's longest side when the viewer solves multiple
@@ -156,7 +237,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
     const LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
-    const Bounds3 bounds = loaded.bounds();
+    Bounds3 bounds = loaded.bounds();
 
     ViewerState state(scene);
     const int width = options.width ? options.width : scene.camera.width;
@@ -184,6 +265,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
 #ifdef LUCENT_HAVE_OPENCL
         std::unique_ptr<hybrid::MultipleScattering> hybridSolver;
         std::unique_ptr<hybrid::MdomScattering> mdomSolver;
+        PlacedObjects placedObjects(loaded);
         std::vector<std::unique_ptr<hybrid::MdomProgress>> mdomRuns;  // one per object while iterating
         std::vector<hybrid::MdomSolution> mdomSolutions;              // the latest per object
         Vec3 bakedFor(kInfinity);                                     // the eye the mdom grids were baked for
@@ -243,6 +325,12 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 state.lightsChanged = false;
                 gridsValid = false;
             }
+            if (state.placementsChanged) {
+                for (size_t i = 0; i < state.placements.size(); ++i) renderer.setPlacement(i, state.placements[i]);
+                bounds = placedBounds(loaded, state.placements);
+                state.placementsChanged = false;
+                gridsValid = false;  // solved for where the objects stood
+            }
             if (state.multiple != gridsShown || (gridsShown != Multiple::Off && !gridsValid)) {
                 renderer.clearScatteringGrids();
                 gridsShown = Multiple::Off;
@@ -256,16 +344,16 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                             if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
                             hybrid::HybridSettings hs;
                             hs.resolution = kViewerGridResolution;
-                            for (const VolumeObject& object : loaded.objects)
-                                renderer.addScatteringGrid(hybridSolver->solve(object, state.lights, hs));
+                            for (const VolumeObject* object : placedObjects.at(state.placements))
+                                renderer.addScatteringGrid(hybridSolver->solve(*object, state.lights, hs));
                         } else {
                             if (!mdomSolver) mdomSolver = std::make_unique<hybrid::MdomScattering>();
                             hybrid::MdomSettings ms;
                             ms.resolution = kViewerGridResolution;
                             ms.directions = 24;
                             mdomRuns.clear();
-                            for (const VolumeObject& object : loaded.objects)
-                                mdomRuns.push_back(mdomSolver->begin(object, state.lights, ms));
+                            for (const VolumeObject* object : placedObjects.at(state.placements))
+                                mdomRuns.push_back(mdomSolver->begin(*object, state.lights, ms));
                             solving = true;
                         }
                         gridsShown = state.multiple;
@@ -379,6 +467,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                     state.screenshots.push_back({"lucent-screenshot.png", screenshotPanel});
                 ImGui::SameLine();
                 ImGui::Checkbox("with the panel", &screenshotPanel);
+                ImGui::Separator();
+                objectsPanel(state, loaded);
                 ImGui::Separator();
                 lightsPanel(state);
                 ImGui::PopItemWidth();

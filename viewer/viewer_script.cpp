@@ -55,6 +55,12 @@ Light& lightAt(ViewerState& state, std::istringstream& in, const std::string& wh
     return state.lights[index];
 }
 
+Similarity& selectedPlacement(ViewerState& state, const std::string& where) {
+    if (state.selected >= state.placements.size()) throw Error(where, "no object is selected");
+    state.placementsChanged = true;
+    return state.placements[state.selected];
+}
+
 bool onOff(std::istringstream& in, const std::string& where) {
     std::string word;
     in >> word;
@@ -111,6 +117,32 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         Light& light = lightAt(state, in, where);
         state.lights.erase(state.lights.begin() + (&light - state.lights.data()));
         state.lightsChanged = true;
+    } else if (command == "select") {
+        size_t index;
+        if (!(in >> index) || index >= state.placements.size())
+            throw Error(where, "no object with that index (there are " + std::to_string(state.placements.size()) + ")");
+        state.selected = index;
+    } else if (command == "move") {
+        const Vec3 offset = readVec3(in, where, "offset");
+        Similarity& p = selectedPlacement(state, where);
+        const Vec3 moved = p.translation + offset;
+        if (std::max({std::abs(moved.x), std::abs(moved.y), std::abs(moved.z)}) > kMaxCoordinate)
+            throw Error(where, "move would take the object beyond +-" + formatNumber(kMaxCoordinate));
+        p.translation = moved;
+    } else if (command == "rotate") {
+        // About the world axis through the object's origin: the turn comes after its own rotation.
+        const Vec3 axis = readDirection(in, where);
+        double degrees;
+        if (!(in >> degrees) || !std::isfinite(degrees) || std::abs(degrees) > 1e6)
+            throw Error(where, "rotate needs an axis and degrees in [-1e6, 1e6]");
+        Similarity& p = selectedPlacement(state, where);
+        p.rotation = makeSimilarity(1.0, axis, degrees, Vec3(0.0)).rotation * p.rotation;
+    } else if (command == "scale") {
+        const double factor = readPositive(in, where, "scale");
+        Similarity& p = selectedPlacement(state, where);
+        if (!(p.scale * factor >= kMinScale && p.scale * factor <= kMaxScale))
+            throw Error(where, "scale would leave [" + formatNumber(kMinScale) + ", " + formatNumber(kMaxScale) + "]");
+        p.scale *= factor;
     } else if (command == "extinction") {
         state.extinctionScale = float(readPositive(in, where, "extinction"));
     } else if (command == "exposure") {

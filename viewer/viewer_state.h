@@ -1,6 +1,6 @@
 #pragma once
 // What the viewer shows and the user (or a script) changes: camera, lights,
-// medium scale, passes, exposure.
+// where each object stands, medium scale, passes, exposure.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -11,9 +11,16 @@
 namespace lucent {
 
 struct ViewerState {
-    explicit ViewerState(const SceneDesc& scene) : camera(scene.camera), lights(scene.lights) {}
+    explicit ViewerState(const SceneDesc& scene) : camera(scene.camera), lights(scene.lights) {
+        for (const ObjectDesc& o : scene.objects) placements.push_back(o.transform);
+    }
     OrbitCamera camera;
     std::vector<Light> lights;
+    // Each object's placement, from the scene's transforms; the selected one is
+    // what `move`, `rotate` and `scale` (and the panel) change.
+    std::vector<Similarity> placements;
+    size_t selected = 0;
+    bool placementsChanged = false;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
     // Multiple scattering added by a hybrid's grids, solved again when the

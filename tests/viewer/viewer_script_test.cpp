@@ -10,6 +10,8 @@ namespace {
 
 SceneDesc oneLight() {
     SceneDesc scene;
+    scene.objects.resize(2);
+    scene.objects[1].transform.translation = Vec3(1, 2, 3);
     Light l;
     l.position = Vec3(3, 0, 2);
     l.power = Rgb(40.0);
@@ -47,6 +49,24 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     EXPECT_TRUE(state.quit);
 }
 
+// move, rotate and scale change the selected object only, in the world: a turn
+// about the world's axis through the object's origin after its own rotation.
+TEST(ViewerScript, TheSelectedObjectMovesTurnsAndScales) {
+    ViewerState state(oneLight());
+    ASSERT_EQ(state.placements.size(), 2u);
+    EXPECT_EQ(state.placements[1].translation, Vec3(1, 2, 3));
+    applyScriptLine(state, "select 1", "s:1");
+    applyScriptLine(state, "move 0.5 0 -1", "s:2");
+    EXPECT_EQ(state.placements[1].translation, Vec3(1.5, 2, 2));
+    EXPECT_TRUE(state.placementsChanged);
+    applyScriptLine(state, "rotate 0 0 2 90", "s:3");
+    applyScriptLine(state, "rotate 1 0 0 90", "s:4");
+    applyScriptLine(state, "scale 2", "s:5");
+    // +x: 90 about z -> +y; then 90 about x -> +z; times 2, from the object's origin.
+    EXPECT_NEAR(glm::length(state.placements[1].point(Vec3(1, 0, 0)) - Vec3(1.5, 2, 4)), 0.0, 1e-12);
+    EXPECT_TRUE(state.placements[0].isIdentity());
+}
+
 TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
     const std::pair<const char*, const char*> bad[] = {
         {"light 0 direction 0 0 0", "s:1: direction must not be the zero vector"},
@@ -62,6 +82,12 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
         {"zoom 0", "s:1: zoom needs a positive finite number"},
         {"light 7 position 0 0 0", "s:1: no light with that index (there are 1)"},
         {"fly away", "s:1: unknown command 'fly'"},
+        {"select 2", "s:1: no object with that index (there are 2)"},
+        {"move 0 0 1e14", "s:1: offset must be finite and within +-1e+13"},
+        {"rotate 0 0 0 10", "s:1: direction must not be the zero vector"},
+        {"rotate 0 1 0", "s:1: rotate needs an axis and degrees in [-1e6, 1e6]"},
+        {"scale -1", "s:1: scale needs a positive finite number"},
+        {"scale 1e10", "s:1: scale would leave [1e-09, 1e+09]"},
     };
     for (const auto& [line, message] : bad) {
         ViewerState state(oneLight());

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/image.h"
+#include "core/image_compare.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -94,6 +95,35 @@ TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
         }
     ASSERT_GT(compared, 200u);
     EXPECT_NEAR(ratioSum / double(compared), 2.0, 0.05);
+}
+
+// The selected object moved, turned and scaled by script is the object the
+// scene's transform places there: the viewer's frame equals lucent render's.
+TEST(Viewer, MovingTheSelectedObjectPlacesItAsTheScenesTransformDoes) {
+    test::ScratchDir dir;
+    const std::string head = R"({
+      "camera": {"position": [0, 1, 5], "target": [0.3, 0, 0], "fov_y": 35, "width": 96, "height": 96},
+      "lights": [{"type": "point", "position": [3, 2, 2], "intensity": [40, 40, 40]}],
+      "objects": [{"mesh": ")" + (test::modelsDir() / "bunny.off").string() + R"(",
+                   "medium": {"sigma_t": 4.0, "albedo": 0.75}, "samples": "s.lsf")";
+    const auto scene = dir.write("scene.json", head + "}]}");
+    const auto placed = dir.write("placed.json", head + R"(,
+      "transform": {"scale": 1.3, "rotate": {"axis": [0, 1, 0], "degrees": 40}, "translate": [0.6, 0, 0]}}]})");
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto shot = dir.path() / "moved.pfm", rendered = dir.path() / "rendered.pfm";
+    const auto script = dir.write("move.txt", "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\n"
+                                              "screenshot " + shot.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 640x480x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    // The same sample file serves the placed scene: no preprocessing again.
+    const auto render = test::runLucent("render " + placed.string() + " --method ss -o " + rendered.string());
+    ASSERT_EQ(render.exitCode, 0) << render.stderrText;
+    const ImageError e = compareImages(readPfm(shot), readPfm(rendered));
+    EXPECT_GT(e.pixels, 500u);
+    // The same passes on the same samples; only the depth range (the viewer's
+    // hugs the placed bounding box's corners) may differ.
+    EXPECT_LT(e.relativeRmse, 1e-3);
 }
 
 #ifdef LUCENT_HAVE_OPENCL
