@@ -137,7 +137,8 @@ void checkOff(const std::filesystem::path& file, uint64_t size) {
         }
         counts.push_back(parseCount(file, word, "OFF"));
     }
-    if (counts.size() < 2) return;
+    // OpenMesh spins on an OFF file that ends before its counts (just "OFF").
+    if (counts.size() < 2) fail(file, "OFF file ends before its vertex and face counts");
     checkCount(file, counts[0], "vertices");
     checkCount(file, counts[1], "faces");
     // ASCII: "0 0 0\n" per vertex, "3 0 1 2\n" per face; binary: 12 and 16 bytes.

@@ -95,6 +95,7 @@ TEST(TriangleMesh, RejectsBrokenMeshesWithOneLine) {
         // A header that only contains OFF: OpenMesh's reader spun on it for minutes
         // in some runs (fuzz corpus d54e6e4c), so it never reaches OpenMesh.
         {"offp.off", std::string("OFFp\0 5 0 23\n", 13), "OFF header 'OFFp?' is not one Lucent reads"},
+        {"bare.off", "OFF", "OFF file ends before its vertex and face counts"},
     };
     for (const Case& c : cases) {
         const std::string message = loadError(dir, c.name, c.contents);
