@@ -13,6 +13,7 @@
 #include "core/loaded_scene.h"
 #include "core/scene.h"
 #include "methods/method_table.h"
+#include "runtime/internal/gl.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
 

@@ -16,6 +16,7 @@
 #include "core/scene.h"
 #include "core/volume_object.h"
 #include "preprocess/preprocessor.h"
+#include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"

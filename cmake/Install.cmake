@@ -32,7 +32,6 @@ install(FILES preprocess/preprocessor.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/pr
 install(FILES reference/reference_renderer.h reference/reference_method.h DESTINATION ${LUCENT_INSTALL_INCLUDE}/reference)
 # The runtime's public headers only: internal/ holds its private ones.
 install(DIRECTORY runtime/ DESTINATION ${LUCENT_INSTALL_INCLUDE}/runtime FILES_MATCHING PATTERN "*.h" PATTERN internal EXCLUDE)
-install(DIRECTORY ${CMAKE_BINARY_DIR}/runtime/glad/include/ DESTINATION ${LUCENT_INSTALL_INCLUDE})
 install(EXPORT LucentTargets NAMESPACE Lucent:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/Lucent)
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/LucentConfig.cmake.in

@@ -158,6 +158,9 @@ private:
     int saved_ = -1;
 };
 
+TriangleMesh checkedClosedMesh(OmMesh& om, const std::string& openMeshErrors, const std::string& file,
+                               std::vector<std::string>& warnings);
+
 // OpenMesh's STL reader drops vertices that are not finite, and the faces using
 // them, without a word; look at binary STL coordinates ourselves first.
 void rejectNonFiniteBinaryStl(const std::filesystem::path& path) {
@@ -212,6 +215,32 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
     // every face that uses it, reporting only the faces.
     if (openMeshErrors.find("invalid vertex index") != std::string::npos)
         throw Error(file, "a vertex has non-finite or malformed coordinates (a face refers to a vertex that could not be read)");
+    return checkedClosedMesh(om, openMeshErrors, file, warnings);
+}
+
+TriangleMesh closedMesh(const std::vector<Vec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles,
+                        const std::string& name, std::vector<std::string>& warnings) {
+    OmMesh om;
+    for (const Vec3& p : positions) om.add_vertex(OmMesh::Point(float(p.x), float(p.y), float(p.z)));
+    OpenMeshErrorCapture& capture = OpenMeshErrorCapture::instance();
+    capture.clear();
+    for (size_t f = 0; f < triangles.size(); ++f) {
+        const auto& t = triangles[f];
+        for (uint32_t v : t)
+            if (v >= positions.size())
+                throw Error(name, "triangle " + std::to_string(f) + " refers to vertex " + std::to_string(v) + " of " +
+                                      std::to_string(positions.size()));
+        om.add_face(OmMesh::VertexHandle(int(t[0])), OmMesh::VertexHandle(int(t[1])), OmMesh::VertexHandle(int(t[2])));
+    }
+    return checkedClosedMesh(om, capture.text(), name, warnings);
+}
+
+namespace {
+
+// What every closed mesh must be, however it was read: the checks of
+// loadClosedMesh after OpenMesh holds it (errors: what OpenMesh reported).
+TriangleMesh checkedClosedMesh(OmMesh& om, const std::string& openMeshErrors, const std::string& file,
+                               std::vector<std::string>& warnings) {
     if (openMeshErrors.find("complex") != std::string::npos)
         throw Error(file, "mesh is not manifold (an edge or vertex is shared by more than two face fans)");
     if (om.n_faces() == 0 || om.n_vertices() == 0) throw Error(file, "mesh is empty");
@@ -268,5 +297,7 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
     }
     return mesh;
 }
+
+}  // namespace
 
 }  // namespace lucent

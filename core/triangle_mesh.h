@@ -40,4 +40,9 @@ Vec3 interpolatedNormal(const TriangleMesh& mesh, const std::array<Vec3, 3>& cor
 // Throws Error("FILE: problem") otherwise.
 TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::string>& warnings);
 
+// The same checks for a mesh a host built in memory (single-precision vertices,
+// as files give them); name stands for the file in errors and warnings.
+TriangleMesh closedMesh(const std::vector<Vec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles,
+                        const std::string& name, std::vector<std::string>& warnings);
+
 }  // namespace lucent

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/fingerprint.h"
 #include "core/limits.h"
 
 namespace lucent {
@@ -38,8 +39,18 @@ TriangleMesh placedMesh(const TriangleMesh& mesh, const Similarity& placement, c
 
 }  // namespace
 
+std::vector<TriangleMesh> loadBlockers(const ObjectDesc& desc, std::vector<std::string>& warnings) {
+    std::vector<TriangleMesh> blockers;
+    for (const auto& file : desc.medium.blockers) blockers.push_back(loadClosedMesh(file, warnings));
+    return blockers;
+}
+
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : desc_(desc), objectMesh_(loadClosedMesh(desc.mesh, warnings)),
+    : VolumeObject(desc, loadClosedMesh(desc.mesh, warnings), loadBlockers(desc, warnings), warnings) {}
+
+VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers,
+                           std::vector<std::string>& /*warnings*/)
+    : desc_(desc), objectMesh_(std::move(mesh)),
       mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)),
       boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
     if (!placed()) objectMesh_ = TriangleMesh{};
@@ -54,15 +65,17 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& war
         throw Error(desc.mesh.string(), std::string("sigma_t times the density reaches ") + text +
                                             ", above the 1e30 Lucent stores (docs/robustness.md)");
     }
-    for (const auto& file : desc.medium.blockers) {
-        TriangleMesh blocker = loadClosedMesh(file, warnings);
+    for (size_t k = 0; k < blockers.size(); ++k) {
+        TriangleMesh& blocker = blockers[k];
+        const std::string file = k < desc.medium.blockers.size() ? desc.medium.blockers[k].string()
+                                                                  : desc.name + ": blocker " + std::to_string(k);
         if (placed()) {
             objectBlockerMeshes_.push_back(blocker);
             blocker = placedMesh(blocker, desc.transform, file);
         }
         for (const Vec3& p : blocker.positions)
             if (!boundary_.contains(p))
-                throw Error(file.string(), "blocker is not inside its object '" + desc.name + "'");
+                throw Error(file, "blocker is not inside its object '" + desc.name + "'");
         blockers_.emplace_back(blocker);
         blockerMeshes_.push_back(std::move(blocker));
     }
@@ -115,6 +128,50 @@ double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& 
 Rgb VolumeObject::extinction(const Vec3& p) const {
     if (!blockers_.empty() && insideBlocker(p)) return Rgb(0.0);
     return desc_.medium.sigmaT * density_->at(p);
+}
+
+VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const MediumDesc& medium,
+                          std::vector<TriangleMesh> blockers, const Similarity& transform) {
+    auto within = [&](const Rgb& v, double lo, double hi, const char* what) {
+        for (int c = 0; c < 3; ++c)
+            if (!(v[c] >= lo && v[c] <= hi))
+                throw Error(name, std::string(what) + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    };
+    within(medium.sigmaT, 0.0, kMaxMagnitude, "sigma_t");
+    within(medium.albedo, 0.0, 1.0, "albedo");
+    within(Rgb(medium.g), -0.999, 0.999, "g");
+    within(Rgb(medium.ior), 1.0, 4.0, "ior");
+    for (double v : medium.density.values) within(Rgb(v), 0.0, kMaxMagnitude, "a density value");
+    ObjectDesc desc;
+    desc.name = name;
+    desc.mesh = name;
+    desc.medium = medium;
+    desc.medium.blockers.clear();
+    desc.transform = transform;
+    Fingerprint fp;
+    auto addMesh = [&](const TriangleMesh& m) {
+        fp.addBytes(m.positions.data(), m.positions.size() * sizeof(Vec3));
+        fp.addBytes(m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]));
+    };
+    addMesh(mesh);
+    for (const TriangleMesh& b : blockers) addMesh(b);
+    const DensityDesc& d = medium.density;
+    fp.addBytes(&medium.sigmaT, sizeof medium.sigmaT);
+    fp.addBytes(&medium.albedo, sizeof medium.albedo);
+    fp.addBytes(&medium.g, sizeof medium.g);
+    fp.addBytes(&medium.ior, sizeof medium.ior);
+    fp.addBytes(&d.type, sizeof d.type);
+    fp.addBytes(&d.axis, sizeof d.axis);
+    fp.addBytes(d.values.data(), d.values.size() * sizeof(double));
+    if (d.type == DensityDesc::Type::Grid) {
+        fp.addFile(d.file);
+        fp.addText(d.gridName);
+        fp.addBytes(d.dims, sizeof d.dims);
+        fp.addBytes(&d.bounds, sizeof d.bounds);
+    }
+    desc.fingerprint = fp.value();
+    std::vector<std::string> warnings;
+    return VolumeObject(desc, std::move(mesh), std::move(blockers), warnings);
 }
 
 std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings) {

@@ -21,6 +21,10 @@ class VolumeObject {
 public:
     // Loads and validates the mesh, blockers and density of desc, placed by desc.transform.
     VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings);
+    // The same from meshes already in memory (closedMesh, core/triangle_mesh.h):
+    // desc.mesh and desc.medium.blockers only name them in errors.
+    VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers,
+                 std::vector<std::string>& warnings);
 
     const ObjectDesc& desc() const { return desc_; }
     const TriangleMesh& mesh() const { return mesh_; }  // in the world
@@ -80,5 +84,12 @@ inline Rgb transmittance(const Rgb& sigmaT, double path) {
 }
 
 std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings);
+
+// An object a host holds in memory, no files (a library's way in: preprocessObject
+// then makes its samples, translucentObjectFor hands both to the runtime). Its
+// fingerprint covers the meshes and the medium, so sample sets made from other
+// data are refused. A grid density still names its file.
+VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const MediumDesc& medium,
+                          std::vector<TriangleMesh> blockers = {}, const Similarity& transform = {});
 
 }  // namespace lucent

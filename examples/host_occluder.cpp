@@ -9,6 +9,10 @@
 // GL_DEPTH24_STENCIL8: Lucent reads either.
 //
 // SCENE.json is a Lucent scene whose first object has been preprocessed.
+//
+// The host reaches OpenGL through its own loader, libepoxy, as an engine would;
+// Lucent keeps its own (runtime/opengl.h), and the two never meet.
+#include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cstdio>

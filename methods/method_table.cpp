@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "reference/path_method.h"
 #include "reference/reference_method.h"

@@ -1,7 +1,6 @@
 #include "runtime/offscreen_context.h"
 
 #include "core/error.h"
-#include "runtime/gl.h"
 
 namespace lucent {
 
@@ -27,21 +26,6 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create(GlBackend backend) {
             throw Error(std::string(eglError.what()) + "; " + osmesaError.what());
         }
     }
-}
-
-namespace {
-void* (*currentProc)(const char*) = nullptr;
-GLADapiproc loadProc(const char* name) { return reinterpret_cast<GLADapiproc>(currentProc(name)); }
-}  // namespace
-
-void loadGl(const char* backend, void* (*proc)(const char*)) {
-    currentProc = proc;
-    const int version = gladLoadGL(loadProc);
-    if (version == 0) throw Error(std::string("no usable OpenGL context: ") + backend + ": cannot load OpenGL functions");
-    if (GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < 45)
-        throw Error(std::string("no usable OpenGL context: ") + backend + ": OpenGL " +
-                    std::to_string(GLAD_VERSION_MAJOR(version)) + "." + std::to_string(GLAD_VERSION_MINOR(version)) +
-                    " found, 4.5 core needed");
 }
 
 }  // namespace lucent

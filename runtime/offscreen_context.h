@@ -1,9 +1,11 @@
 #pragma once
 // An OpenGL 4.5 core context with no window: OSMesa or EGL (surfaceless, on Mesa's
-// llvmpipe here). Creating one makes it current and loads GL through glad; the
-// caller renders into its own framebuffer objects.
+// llvmpipe here). Creating one makes it current and loads Lucent's GL functions
+// (runtime/opengl.h); the caller renders into its own framebuffer objects.
 #include <memory>
 #include <string>
+
+#include "runtime/opengl.h"
 
 namespace lucent {
 
@@ -21,8 +23,5 @@ public:
 
 std::unique_ptr<OffscreenContext> createOsmesaContext();
 std::unique_ptr<OffscreenContext> createEglContext();
-
-// After a context is current: load GL 4.5 core through proc, or throw.
-void loadGl(const char* backend, void* (*proc)(const char*));
 
 }  // namespace lucent

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "runtime/internal/gl.h"
 
 namespace lucent {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A float colour target with a depth texture, read back as a linear Image.
 #include "core/image.h"
-#include "runtime/gl.h"
+#include "runtime/opengl.h"
 
 namespace lucent {
 
@@ -13,13 +13,13 @@ public:
     OffscreenFrame& operator=(const OffscreenFrame&) = delete;
 
     void bindAndClear() const;  // colour to 0, depth to 1
-    GLuint depthTexture() const { return depth_; }
-    GLuint colourTexture() const { return colour_; }
+    GlName depthTexture() const { return depth_; }
+    GlName colourTexture() const { return colour_; }
     Image read() const;         // row 0 at the top; non-finite and negative values as 0
 
 private:
     int width_, height_;
-    GLuint framebuffer_ = 0, colour_ = 0, depth_ = 0;
+    GlName framebuffer_ = 0, colour_ = 0, depth_ = 0;
 };
 
 }  // namespace lucent

@@ -45,6 +45,9 @@ struct ScatteringRenderer::Impl {
 
 ScatteringRenderer::ScatteringRenderer(double cutoff) {
     if (!(cutoff > 0.0 && cutoff < 1.0)) throw Error("Gaussian cut-off must lie in (0, 1)");
+    if (!glLoaded())
+        throw Error("ScatteringRenderer: Lucent's OpenGL functions are not loaded: call lucent::loadGl with the "
+                    "context current first (runtime/opengl.h)");
     impl_ = std::make_unique<Impl>(cutoff);
 }
 
@@ -68,10 +71,28 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
 
 size_t ScatteringRenderer::objectCount() const { return impl_->objects.size(); }
 
+namespace {
+void checkIndex(const char* call, size_t index, size_t count) {
+    if (index >= count)
+        throw Error(std::string(call) + ": no object " + std::to_string(index) + " (" + std::to_string(count) + " added)");
+}
+}  // namespace
+
+void ScatteringRenderer::removeObject(size_t index) {
+    checkIndex("removeObject", index, impl_->objects.size());
+    impl_->objects.erase(impl_->objects.begin() + long(index));
+}
+
+void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples) {
+    checkIndex("setSamples", index, impl_->objects.size());
+    GpuObject& o = impl_->objects[index];
+    o.samples = std::make_unique<GpuSamples>(samples);
+    o.opticallyThick = samples.parameters.scheme == SampleScheme::OpticallyThick;
+    o.shadowsValid = false;
+}
+
 void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement) {
-    if (index >= impl_->objects.size())
-        throw Error("setPlacement: no object " + std::to_string(index) + " (" +
-                    std::to_string(impl_->objects.size()) + " added)");
+    checkIndex("setPlacement", index, impl_->objects.size());
     if (!(placement.scale > 0.0) || !std::isfinite(placement.scale) || !isFinite(placement.translation))
         throw Error("setPlacement: the scale must be positive and finite and the translation finite");
     GpuObject& o = impl_->objects[index];

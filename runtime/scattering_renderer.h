@@ -16,7 +16,7 @@
 #include "core/scene.h"
 #include "core/triangle_mesh.h"
 #include "core/volume_object.h"
-#include "runtime/gl.h"
+#include "runtime/opengl.h"
 #include "runtime/view_setup.h"
 
 namespace lucent {
@@ -38,7 +38,7 @@ TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleS
 struct DrawOptions {
     bool surface = true;
     bool scattering = true;
-    GLuint hostDepthTexture = 0;  // the host's depth (0: nothing occludes)
+    GlName hostDepthTexture = 0;  // the host's depth (0: nothing occludes)
     // Scales every medium's sigma_t and sigma_s at constant albedo. Exact up to the
     // SH truncation: the stored attenuation exp(-tau) becomes exp(-k tau) = psi^k.
     float extinctionScale = 1.0f;
@@ -49,6 +49,8 @@ struct DrawOptions {
 
 class ScatteringRenderer {
 public:
+    // On the current context, once loadGl has loaded Lucent's functions from it
+    // (runtime/opengl.h; OffscreenContext does it); Error otherwise.
     // cutoff: a Gaussian is drawn where it exceeds this fraction of its peak.
     explicit ScatteringRenderer(double cutoff = 1e-4);
     ~ScatteringRenderer();
@@ -57,6 +59,11 @@ public:
 
     // Objects are numbered in the order they are added, from 0.
     void addObject(const TranslucentObject& object);
+    // Removes object index; those after it move down by one.
+    void removeObject(size_t index);
+    // Gives object index new samples (its medium changed and it was preprocessed
+    // again, say); its mesh and placement stay.
+    void setSamples(size_t index, const SampleSet& samples);
     size_t objectCount() const;
     // Moves, turns or scales object index (any similarity, every frame if need be:
     // nothing is uploaded; isotropic media recompute their samples' light once).

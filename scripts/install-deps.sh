@@ -15,6 +15,8 @@ packages=(
   # and nothing depends on), the glad loader generator, GLFW + Dear ImGui for the
   # viewer, Xvfb to test the viewer without a display
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev python3-glad libglfw3-dev libimgui-dev xvfb xauth
+  # the example hosts load OpenGL themselves (libepoxy), beside Lucent's own loader
+  libepoxy-dev
   # OpenCL for the hybrid (hybrid/): headers, the ICD loader and PoCL, which runs
   # the kernels on the CPU; clinfo to see what the loader finds
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo

@@ -1,6 +1,6 @@
 #include "viewer/viewer.h"
 
-#include "runtime/gl.h"  // glad before GLFW, and GLFW without its own GL header
+#include "runtime/internal/gl.h"  // glad before GLFW, and GLFW without its own GL header
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>

@@ -3,7 +3,7 @@
 // the opaque blockers drawn in, the nearest front face and the farthest back face
 // of the translucent meshes with the next entries and exits peeled behind them,
 // each pixel's ray segment [t0, t1] inside them and its first two intervals inside.
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/gpu_layout.h"
 #include "runtime/internal/render_pass.h"

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 
 namespace lucent {
 

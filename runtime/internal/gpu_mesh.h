@@ -2,7 +2,7 @@
 // A triangle mesh on the GPU (positions and shading normals, core/triangle_mesh.h) that the passes draw:
 // an object's boundary or one of its blockers.
 #include "core/triangle_mesh.h"
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 
 namespace lucent {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/sample_set.h"
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 #include "runtime/internal/sample_packing.h"
 
 namespace lucent {

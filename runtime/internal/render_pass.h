@@ -11,7 +11,7 @@
 
 #include "core/mesh_raycaster.h"
 #include "core/scene.h"
-#include "runtime/gl.h"
+#include "runtime/internal/gl.h"
 #include "runtime/internal/blocker_shadows.h"
 #include "runtime/internal/gpu_mesh.h"
 #include "runtime/internal/gpu_samples.h"

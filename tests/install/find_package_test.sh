@@ -21,6 +21,19 @@ for header in "$prefix"/include/lucent/runtime/*.h; do
     g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" -x c++ - ||
     { echo "FAIL: $header does not compile on its own"; exit 1; }
 done
+# A host that loads OpenGL itself (libepoxy here) includes Lucent's public
+# headers after its own GL header: no loader header of Lucent's may come along.
+for header in "$prefix"/include/lucent/runtime/*.h; do
+  printf '#include <epoxy/gl.h>\n#include "runtime/%s"\n' "$(basename "$header")" |
+    g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" $(pkg-config --cflags epoxy) -x c++ - ||
+    { echo "FAIL: $header does not compile after the host's own GL header"; exit 1; }
+done
+# No loader symbol of Lucent's meets the host's: every name glad defines is prefixed lucent_.
+exported=$(find "$prefix" -name 'liblucent*.a' -exec nm -g --defined-only {} + 2> /dev/null |
+  awk 'NF == 3 {print $3}' | grep -E '^(glad|GLAD|gl[A-Z]|epoxy)' || true)
+if [ -n "$exported" ]; then
+  echo "FAIL: Lucent's libraries export OpenGL loader symbols: $(echo "$exported" | head -3 | tr '\n' ' ')"; exit 1
+fi
 if [ -e "$prefix/include/lucent/hybrid" ]; then
   [ ! -e "$prefix/include/lucent/hybrid/internal" ] || { echo "FAIL: the hybrid's private headers were installed"; exit 1; }
   echo '#include "hybrid/multiple_scattering.h"' | g++ -std=c++20 -fsyntax-only -I"$prefix/include/lucent" -x c++ - ||
@@ -35,6 +48,7 @@ cmake -S "$source_dir/examples" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$prefix
   -DCMAKE_CXX_FLAGS="$cxx_flags" -DCMAKE_EXE_LINKER_FLAGS="$link_flags" > /dev/null
 cmake --build "$scratch/build" -j2 > /dev/null
 test -x "$scratch/build/lucent-example-host"
+test -x "$scratch/build/lucent-example-window"
 
 cat > "$scratch/scene.json" <<JSON
 {"camera": {"position": [0, 0.6, 5], "target": [0, 0, 0], "fov_y": 35, "width": 32, "height": 32},
