@@ -1,9 +1,11 @@
 // Render benchmark (thesis Tables 3.2 and 3.3): median frame time after warm-up
 // of --method ss at 800x800 on Mesa's llvmpipe, against the sample count and the
 // number of lights, and how many of the fragments the proxies generate carry a
-// Gaussian above the cut-off.
+// Gaussian above the cut-off; then the scattering at full, half and quarter
+// resolution (DrawOptions::scatterScale), interleaved, with each one's error
+// against --method reference.
 //
-//   build/bin/lucent-bench-render [SCENE] [--frames N] [--warmup N]
+//   build/bin/lucent-bench-render [SCENE] [--frames N] [--warmup N] [--scales-only]
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -15,7 +17,9 @@
 #include "core/statistics.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
+#include "core/image_compare.h"
 #include "preprocess/preprocessor.h"
+#include "reference/reference_renderer.h"
 #include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
@@ -51,6 +55,10 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "Untimed frames first");
     app.add_option("--size", size, "Viewport width and height");
     app.add_option("--backend", backendName, "osmesa or egl");
+    bool scalesOnly = false;
+    app.add_flag("--scales-only", scalesOnly, "Only the table of reduced scattering resolutions");
+    std::string imagesDir;
+    app.add_option("--images", imagesDir, "Write the reduced-resolution images and the reference there (PNG)");
     CLI11_PARSE(app, argc, argv);
     try {
         SceneDesc scene = parseScene(sceneFile);
@@ -108,6 +116,55 @@ int main(int argc, char** argv) {
             return checkSamplesBelong(object, preprocessObject(object, s), "in-memory samples of " + object.desc().name);
         };
 
+        // The scattering at 1/1, 1/2 and 1/4 of the resolution, interleaved frame by
+        // frame; each image against the reference, 2 px inside the silhouette and in all.
+        {
+            const SampleSet samples = samplesFor(50000);
+            const std::vector<int> scales = {1, 2, 4};
+            ScatteringRenderer renderer;
+            renderer.addObject(translucentObjectFor(object, samples));
+            scene.lights = lightsAround(1, bounds);
+            renderer.setLights(scene.lights);
+            std::vector<std::vector<double>> times(scales.size());
+            std::vector<Image> images;
+            for (int round = 0; round < warmup + frames; ++round)
+                for (size_t k = 0; k < scales.size(); ++k) {
+                    DrawOptions options;
+                    options.surface = false;
+                    options.scatterScale = scales[k];
+                    frame.bindAndClear();
+                    glFinish();
+                    const auto start = std::chrono::steady_clock::now();
+                    renderer.draw(view, options);
+                    glFinish();
+                    if (round >= warmup) times[k].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                    if (round == 0) images.push_back(frame.read());
+                }
+            std::fprintf(stderr, "rendering the reference...\n");
+            ReferenceSettings rs;
+            rs.surface = false;
+            const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+            const Image reference = ReferenceRenderer(scene, objects).render(rs);
+            std::printf("%zu samples, %d interleaved rounds, surface off; error: relative RMSE against --method reference\n\n"
+                        "| scattering at | frame (ms) | vs full | error, 2 px inside | error, all pixels |\n"
+                        "|---|---:|---:|---:|---:|\n",
+                        samples.size(), frames);
+            for (size_t k = 0; k < scales.size(); ++k) {
+                const double t = median(times[k]);
+                std::printf("| 1/%d | %.1f | %.2fx | %.2f%% | %.2f%% |\n", scales[k], 1e3 * t, median(times[0]) / t,
+                            100.0 * compareImages(images[k], reference, 2).relativeRmse,
+                            100.0 * compareImages(images[k], reference).relativeRmse);
+            }
+            std::printf("\n");
+            std::fflush(stdout);
+            if (!imagesDir.empty()) {
+                const float exposure = autoExposure(reference);
+                writeImage(imagesDir + "/reference.png", reference, exposure);
+                for (size_t k = 0; k < scales.size(); ++k)
+                    writeImage(imagesDir + "/scatter-1-" + std::to_string(scales[k]) + ".png", images[k], exposure);
+            }
+            if (scalesOnly) return 0;
+        }
         std::printf("| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n");
         for (int count : {25000, 50000, 100000}) {
             const SampleSet samples = samplesFor(count);

@@ -27,6 +27,7 @@ struct ScatteringRenderer::Impl {
     std::vector<GpuObject> objects;
     GpuLights lights;
     FrameTargets targets;
+    FrameTargets scatterTargets;  // at the scattering's reduced resolution, when it is reduced
     // In drawing order: the reflected surface, then single scattering, then multiple.
     std::vector<std::unique_ptr<RenderPass>> passes;
     GridPass* grids = nullptr;
@@ -42,6 +43,13 @@ struct ScatteringRenderer::Impl {
         if (lights.buffer) glDeleteBuffers(1, &lights.buffer);
     }
 };
+
+int scatterScaleFor(int width, int height) {
+    const int shorter = std::min(width, height);
+    int scale = 1;
+    while (scale < 4 && shorter / (2 * scale) >= kMinScatterPixels) scale *= 2;
+    return scale;
+}
 
 ScatteringRenderer::ScatteringRenderer(double cutoff) {
     if (!(cutoff > 0.0 && cutoff < 1.0)) throw Error("Gaussian cut-off must lie in (0, 1)");
@@ -134,9 +142,18 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     Impl& r = *impl_;
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-    FrameContext frame{view, options, r.objects, r.lights, r.targets, view.projection * view.view};
+    FrameContext frame{view, options, r.objects, r.lights, r.targets, view.projection * view.view, GLuint(target)};
+    int scale = options.scatterScale == 0 ? scatterScaleFor(view.width, view.height) : options.scatterScale;
+    if (scale != 1 && scale != 2 && scale != 4) throw Error("DrawOptions::scatterScale must be 0, 1, 2 or 4");
+    ViewSetup reduced = view;
+    reduced.width = std::max((view.width + scale - 1) / scale, 1);
+    reduced.height = std::max((view.height + scale - 1) / scale, 1);
+    frame.scatterScale = scale;
+    frame.scatterView = scale == 1 ? &view : &reduced;
+    frame.scatterTargets = scale == 1 ? &r.targets : &r.scatterTargets;
     for (const auto& pass : r.passes) pass->prepare(frame);
-    r.targets.draw(frame);
+    r.targets.draw(frame, view);
+    if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLights, r.lights.buffer);

@@ -45,7 +45,16 @@ struct DrawOptions {
     // Diagnostics: discard scattering fragments whose Gaussian line integral is
     // below this fraction of its largest possible value (0: keep all).
     float discardBelow = 0.0f;
+    // The single-scattering pass at 1/k of the resolution on each axis (k = 1, 2
+    // or 4), upsampled along the objects' depth: its cost falls by about k^2.
+    // 0: the measured default (scatterScaleFor, docs/runtime.md).
+    int scatterScale = 0;
 };
+
+// The reduction DrawOptions::scatterScale 0 picks for a view: the largest of 1,
+// 2 and 4 that leaves the scattering at least kMinScatterPixels on the shorter side.
+inline constexpr int kMinScatterPixels = 128;
+int scatterScaleFor(int width, int height);
 
 class ScatteringRenderer {
 public:

@@ -41,8 +41,7 @@ void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& progra
     }
 }
 
-void FrameTargets::draw(const FrameContext& frame) {
-    const ViewSetup& view = frame.view;
+void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view) {
     for (TextureTarget& t : frontLayers_) t.resize(view.width, view.height);
     for (TextureTarget& t : backLayers_) t.resize(view.width, view.height);
     back_.resize(view.width, view.height);
@@ -62,6 +61,8 @@ void FrameTargets::draw(const FrameContext& frame) {
         glUseProgram(copyDepthProgram_.id());
         glBindTextureUnit(0, frame.options.hostDepthTexture);
         glUniform1i(copyDepthProgram_.uniform("source"), 0);
+        glUniform2f(copyDepthProgram_.uniform("sourcePerPixel"), float(frame.view.width) / float(view.width),
+                    float(frame.view.height) / float(view.height));
         glBindVertexArray(emptyVao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }

@@ -39,9 +39,11 @@ public:
     FrameTargets(const FrameTargets&) = delete;
     FrameTargets& operator=(const FrameTargets&) = delete;
 
-    // Draws the targets for this frame; leaves depth testing on with GL_LESS,
-    // back faces culled and the last target bound.
-    void draw(const FrameContext& frame);
+    // Draws the targets for this frame as seen through view (frame.view, or the
+    // reduced one the scattering runs at: the host's depth is then read at each
+    // pixel's centre); leaves depth testing on with GL_LESS, back faces culled
+    // and the last target bound.
+    void draw(const FrameContext& frame, const ViewSetup& view);
     // Draws every object's boundary mesh with program (mesh.vert), each where it stands.
     static void drawMeshes(const FrameContext& frame, const GlProgram& program);
 

@@ -52,6 +52,13 @@ struct FrameContext {
     const GpuLights& lights;
     const FrameTargets& targets;
     glm::mat4 viewProjection;
+    GLuint hostFramebuffer = 0;  // where the passes add their light
+    // The scattering pass runs at 1/scatterScale of the resolution, through
+    // scatterView and scatterTargets (the full ones when scatterScale is 1),
+    // and is upsampled into the host's framebuffer (runtime/internal/upsample.frag).
+    int scatterScale = 1;
+    const ViewSetup* scatterView = nullptr;
+    const FrameTargets* scatterTargets = nullptr;
 };
 
 class RenderPass {

@@ -43,7 +43,7 @@ void SamplePass::prepare(FrameContext& frame) {
 }
 
 void SamplePass::setFrameUniforms(const FrameContext& frame) const {
-    const ViewSetup& view = frame.view;
+    const ViewSetup& view = *frame.scatterView;
     // View-space direction through pixel (x, y) at z = -1 for this projection.
     const glm::mat4& P = view.projection;
     const glm::vec4 pixelToView(2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
@@ -89,8 +89,17 @@ void SamplePass::draw(FrameContext& frame) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     setFrameUniforms(frame);
-    glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
-    glBindTextureUnit(gpu::kUnitInsideSegments, frame.targets.insideSegments());
+    const bool reduced = frame.scatterScale > 1;
+    if (reduced) {
+        const ViewSetup& low = *frame.scatterView;
+        reduced_.resize(low.width, low.height);
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearNamedFramebufferfv(reduced_.framebuffer(), GL_COLOR, 0, zero);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, reduced_.framebuffer());
+        glViewport(0, 0, low.width, low.height);
+    }
+    glBindTextureUnit(gpu::kUnitRaySegments, frame.scatterTargets->raySegments());
+    glBindTextureUnit(gpu::kUnitInsideSegments, frame.scatterTargets->insideSegments());
     const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
@@ -124,6 +133,24 @@ void SamplePass::draw(FrameContext& frame) {
         glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
         o.samples->draw();
     }
+    if (reduced) upsample(frame);
+}
+
+void SamplePass::upsample(const FrameContext& frame) const {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.hostFramebuffer);
+    glViewport(0, 0, frame.view.width, frame.view.height);
+    const GlProgram& p = upsampleProgram_;
+    glUseProgram(p.id());
+    glBindTextureUnit(0, reduced_.texture());
+    glBindTextureUnit(1, frame.scatterTargets->insideSegments());
+    glBindTextureUnit(2, frame.targets.insideSegments());
+    glUniform1i(p.uniform("reducedLight"), 0);
+    glUniform1i(p.uniform("reducedInside"), 1);
+    glUniform1i(p.uniform("fullInside"), 2);
+    glUniform2f(p.uniform("reducedPerPixel"), float(frame.scatterView->width) / float(frame.view.width),
+                float(frame.scatterView->height) / float(frame.view.height));
+    glBindVertexArray(frame.targets.emptyVertexArray());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
 }  // namespace lucent

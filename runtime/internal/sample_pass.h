@@ -2,7 +2,10 @@
 // Pass 2 of thesis 3.4.2: every sample's Gaussian, expanded in a geometry shader
 // and integrated exactly along each pixel's ray segment (scatter.vert, .geom,
 // .frag), summed. Isotropic media reuse the light each sample receives while the
-// lights and the medium scale stay put (received.comp).
+// lights and the medium scale stay put (received.comp). At a reduced resolution
+// the sum goes to its own target first and is upsampled along the objects' depth
+// into the host's framebuffer (upsample.frag).
+#include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/render_pass.h"
 
@@ -18,6 +21,7 @@ public:
 private:
     void setFrameUniforms(const FrameContext& frame) const;
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
+    void upsample(const FrameContext& frame) const;
     double cutoffSigmas_;
     GlProgram scatterProgram_{
         {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}}};
@@ -26,6 +30,8 @@ private:
         {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}},
         {"DENSITY_SLABS"}};
     GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
+    GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
+    TextureTarget reduced_{GL_RGBA32F};  // the scattered light at the reduced resolution
 };
 
 }  // namespace lucent
