@@ -152,7 +152,8 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     frame.scatterView = scale == 1 ? &view : &reduced;
     frame.scatterTargets = scale == 1 ? &r.targets : &r.scatterTargets;
     for (const auto& pass : r.passes) pass->prepare(frame);
-    r.targets.draw(frame, view);
+    // Drawn reduced, the scattering asks of the full targets only the first interval.
+    r.targets.draw(frame, view, scale == 1 ? gpu::kMaxRaySegments : 1);
     if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);

@@ -261,6 +261,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         GLuint emptyVao;
         glCreateVertexArrays(1, &emptyVao);
         double frameMs = 0.0;
+        std::vector<double> frameTimes, loopTimes;  // drawing, and the whole loop: for the summary on closing
+        auto loopStart = std::chrono::steady_clock::now();
         // Multiple scattering: solved on the OpenCL device when asked for and when the lights move.
 #ifdef LUCENT_HAVE_OPENCL
         std::unique_ptr<hybrid::MultipleScattering> hybridSolver;
@@ -280,6 +282,9 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         bool screenshotPanel = false;  // the panel's own screenshot button: with the panel?
 
         while (!glfwWindowShouldClose(window.get()) && !state.quit) {
+            const auto now = std::chrono::steady_clock::now();
+            if (!frameTimes.empty()) loopTimes.push_back(std::chrono::duration<double, std::milli>(now - loopStart).count());
+            loopStart = now;
             glfwPollEvents();
             if (state.waiting && !solving) state.waiting = false;
             if (state.waiting) {
@@ -412,6 +417,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
             glFinish();
             frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            frameTimes.push_back(frameMs);
             if (std::isnan(state.exposureStops)) state.exposureStops = std::log2(autoExposure(frame->read()));
             const float exposure = std::exp2(state.exposureStops);
 
@@ -483,6 +489,15 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             glfwSwapBuffers(window.get());
         }
         glDeleteVertexArrays(1, &emptyVao);
+        if (!loopTimes.empty()) {
+            auto median = [](std::vector<double> v) {
+                std::sort(v.begin(), v.end());
+                return v[v.size() / 2];
+            };
+            const double shown = median(loopTimes);
+            std::fprintf(stderr, "lucent: view: %zu frames at %dx%d: median %.1f ms to draw, %.1f ms per frame shown (%.1f fps)\n",
+                         loopTimes.size(), frameWidth, frameHeight, median(frameTimes), shown, 1e3 / shown);
+        }
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

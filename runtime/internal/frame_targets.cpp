@@ -41,7 +41,7 @@ void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& progra
     }
 }
 
-void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view) {
+void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int intervals) {
     for (TextureTarget& t : frontLayers_) t.resize(view.width, view.height);
     for (TextureTarget& t : backLayers_) t.resize(view.width, view.height);
     back_.resize(view.width, view.height);
@@ -103,6 +103,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view) {
                 if (!exits && k == 0) continue;  // the nearest front face is drawn above
                 TextureTarget& layer = exits ? backLayers_[k] : frontLayers_[k];
                 layer.clearDepth(1.0f);
+                if (k >= intervals) continue;  // left empty: no such interval
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
                 glCullFace(exits ? GL_FRONT : GL_BACK);
                 // The first exit has no layer before it: the plain depth program keeps the nearest back face.

@@ -42,8 +42,10 @@ public:
     // Draws the targets for this frame as seen through view (frame.view, or the
     // reduced one the scattering runs at: the host's depth is then read at each
     // pixel's centre); leaves depth testing on with GL_LESS, back faces culled
-    // and the last target bound.
-    void draw(const FrameContext& frame, const ViewSetup& view);
+    // and the last target bound. intervals: how many of the first intervals
+    // inside are peeled apart (up to kMaxRaySegments); fewer where the scattering
+    // is drawn elsewhere and only the first is asked for (the upsampling's likeness).
+    void draw(const FrameContext& frame, const ViewSetup& view, int intervals = gpu::kMaxRaySegments);
     // Draws every object's boundary mesh with program (mesh.vert), each where it stands.
     static void drawMeshes(const FrameContext& frame, const GlProgram& program);
 
