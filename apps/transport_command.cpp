@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/transport_problem.h"
+#include "core/vdb_output.h"
 #ifdef LUCENT_HAVE_OPENCL
 #include "hybrid/transport.h"
 #endif
@@ -19,10 +20,19 @@ Command addTransportCommand(CLI::App& app) {
         "transport", "Solve a transport problem file with the discrete ordinates solver (docs/transport.md)");
     sub->add_option("problem", *problem, "Problem file (.json)")->required();
     sub->add_option("-o,--output", *output, "Flux at the problem's points (.csv: x,y,z,flux)")->required();
-    return [problem, output] {
+    auto volume = std::make_shared<std::string>();
+    sub->add_option("--vdb", *volume, "Also the flux in every cell, as an OpenVDB float grid named 'flux' (.vdb)");
+    return [problem, output, volume] {
         const TransportProblem p = parseTransportProblem(*problem);
         checkOutputIsNoInput(*output, {*problem});
         checkWritable(*output);
+        if (!volume->empty()) {
+            if (std::filesystem::path(*volume).extension() != ".vdb")
+                throw Error(*volume, "--vdb writes OpenVDB files: the name must end in .vdb");
+            checkOutputIsNoInput(*volume, {*problem});
+            checkOutputsDistinct({*output, *volume});
+            checkWritable(*volume);
+        }
 #ifdef LUCENT_HAVE_OPENCL
         const hybrid::TransportResult r = hybrid::solveTransport(p);
         AtomicFile out(*output);
@@ -31,6 +41,10 @@ Command addTransportCommand(CLI::App& app) {
         s << "x,y,z,flux\n";
         for (size_t i = 0; i < p.points.size(); ++i)
             s << p.points[i].x << ',' << p.points[i].y << ',' << p.points[i].z << ',' << r.flux[i] << '\n';
+        // The volume first: if it cannot be written, neither file appears.
+        if (!volume->empty())
+            writeVdbGrid(*volume, "flux", p.cells, p.domain.min, p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]),
+                         r.cellFlux);
         out.commit();
         std::fprintf(stderr, "lucent: transport: %d directions, %d moments, %d iterations%s in %.2f s on '%s'\n",
                      p.directions, p.bands * p.bands, r.iterations, r.converged ? "" : " (not converged)", r.seconds,

@@ -51,6 +51,8 @@ TransportResult solveTransport(const TransportProblem& p) {
         r.iterations = run.iterations;
         r.converged = run.converged;
         r.device = device.name();
+        r.cellFlux.resize(count);
+        for (size_t v = 0; v < count; ++v) r.cellFlux[v] = float(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));
         for (const Vec3& x : p.points) {
             int c[3];
             for (int a = 0; a < 3; ++a)

@@ -1,6 +1,7 @@
 // The lucent command on bad input: one "lucent: error:" line naming the file and
 // the problem, a non-zero exit, and no output file left behind.
 #include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
 
 #include <sys/stat.h>
 
@@ -226,6 +227,44 @@ TEST(Cli, TransportWritesTheFluxAtThePoints) {
     EXPECT_NE(run.stderrText.find("needs OpenCL"), std::string::npos) << run.stderrText;
 #endif
 }
+
+#ifdef LUCENT_HAVE_OPENCL
+// --vdb: the flux in every cell as an OpenVDB grid, placed in the problem's
+// space (cells of 0.5 x 0.25 x 1 from (-1, 0, 2)): read at each point, it is
+// the flux the CSV gives there; the source's corner is the brightest.
+TEST(Cli, TransportWritesTheWholeVolumeAsOpenVdb) {
+    test::ScratchDir dir;
+    const auto file = dir.write("problem.json", R"({"domain": {"min": [-1, 0, 2], "max": [1, 1, 4], "cells": [4, 4, 2]},
+        "regions": [{"min": [-1, 0, 2], "max": [1, 1, 4], "sigma_t": 1, "sigma_s": 0.5},
+                    {"min": [-1, 0, 2], "max": [-0.5, 0.25, 3], "sigma_t": 1, "sigma_s": 0.5, "source": 3}],
+        "points": [[-0.75, 0.125, 2.5], [0.75, 0.875, 3.5], [0.2, 0.6, 2.1]],
+        "solver": {"directions": 24, "bands": 2}})");
+    const auto csv = dir.path() / "flux.csv", vdb = dir.path() / "flux.vdb";
+    const auto run = test::runLucent("transport " + file.string() + " -o " + csv.string() + " --vdb " + vdb.string());
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const auto rows = test::readCsv(csv);
+    ASSERT_EQ(rows.size(), 3u);
+    openvdb::initialize();
+    openvdb::io::File in(vdb.string());
+    in.open();
+    const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(in.readGrid("flux"));
+    in.close();
+    ASSERT_TRUE(grid);
+    for (const auto& row : rows) {
+        const openvdb::Vec3d world(std::stod(row[0]), std::stod(row[1]), std::stod(row[2]));
+        const openvdb::Coord cell = grid->transform().worldToIndexCellCentered(world);
+        EXPECT_NEAR(grid->tree().getValue(cell), std::stod(row[3]), 1e-5 * std::stod(row[3])) << row[0] << " " << row[1];
+    }
+    EXPECT_GT(std::stod(rows[0][3]), 2.0 * std::stod(rows[1][3]));
+    EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(4 * 4 * 2));
+    // A name that is no OpenVDB file is refused before the solve, and nothing is written.
+    const auto refused = test::runLucent("transport " + file.string() + " -o " + (dir.path() / "b.csv").string() +
+                                         " --vdb " + (dir.path() / "b.exr").string());
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.stderrText.find("must end in .vdb"), std::string::npos) << refused.stderrText;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "b.csv"));
+}
+#endif
 
 TEST(Cli, HelpOffersOnlyTheMethodsThisBuildHas) {
     const auto help = test::runLucent("render --help");
