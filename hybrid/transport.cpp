@@ -18,8 +18,9 @@ TransportResult solveTransport(const TransportProblem& p) {
     const size_t count = grid.count();
     const std::string what = "the " + std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" +
                              std::to_string(p.cells[2]) + " cells of " + p.file.string();
-    device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands),
-                       DomSolver::largestBufferFor(count, p.bands), what);
+    // The host's copies: the source and the flux read back (M float4 per cell), the materials.
+    device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands), DomSolver::largestBufferFor(count, p.bands),
+                       what, count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
     grid.extinction.assign(count, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
     grid.scattering.assign(count, glm::vec4(0.0f));
     grid.phase.assign(count, glm::vec4(0.0f));

@@ -1,6 +1,9 @@
 #include "hybrid/internal/cl_device.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
@@ -119,7 +122,21 @@ cl::Buffer zeroBuffer(const cl::Context& context, size_t bytes) {
     return cl::Buffer(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(), zeros.data());
 }
 
-void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string& what) const {
+namespace {
+// What the kernel says can still be allocated without swapping (MemAvailable:
+// free memory plus caches it can drop), or fallback when it does not say.
+size_t availableMemory(size_t fallback) {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    size_t kib = 0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") return kib * 1024;
+    return fallback;
+}
+}  // namespace
+
+void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string& what, size_t hostBytes) const {
     const size_t total = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     const size_t single = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
     auto mib = [](size_t b) { return std::to_string((b + (1 << 20) - 1) >> 20) + " MiB"; };
@@ -127,6 +144,14 @@ void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string
         throw Error("OpenCL device '" + name() + "' cannot hold " + what + ": it needs " + mib(bytes) +
                     " (largest buffer " + mib(largestBuffer) + "), the device has " + mib(total) + " (" +
                     mib(single) + " per buffer); use a smaller grid (--grid)");
+    const bool shared = device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE ||
+                        device.getInfo<CL_DEVICE_TYPE>() == CL_DEVICE_TYPE_CPU;
+    if (!shared) return;
+    const size_t available = availableMemory(total);
+    if (bytes + hostBytes > std::min(total, available))
+        throw Error("OpenCL device '" + name() + "' cannot hold " + what + ": it needs " + mib(bytes) +
+                    " on the device and " + mib(hostBytes) + " more on the host, which share this machine's " +
+                    mib(std::min(total, available)) + " available; use a smaller grid (--grid)");
 }
 
 }  // namespace lucent::hybrid

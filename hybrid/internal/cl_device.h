@@ -35,8 +35,13 @@ public:
     cl::Program buildSource(const std::string& source, const std::string& name) const;
 
     // Throws Error when `bytes` in all, or `largestBuffer` in one buffer, exceed
-    // what the device can hold; what names the work ("a 128^3 grid").
-    void checkMemory(size_t bytes, size_t largestBuffer, const std::string& what) const;
+    // what the device can hold; what names the work ("a 128^3 grid"). On a
+    // device that shares the host's memory (PoCL on the CPU), hostBytes (the
+    // host's own copies: sources uploaded, results read back) count too, and
+    // everything must fit in the memory the machine has available: PoCL
+    // reports nearly all of it as the device's, and a 256^3 mdom grid that
+    // passed that check was killed by the kernel at 24 GB.
+    void checkMemory(size_t bytes, size_t largestBuffer, const std::string& what, size_t hostBytes = 0) const;
 
     std::string name() const;
 

@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/error.h"
 #include "core/spherical_harmonics.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/internal/dom_solver.h"
@@ -198,6 +199,24 @@ TEST(Transport, InfiniteMediumWithUniformSourceGivesSourceOverAbsorption) {
         const TransportResult r = solveTransport(parseTransportProblemText(text, "infinite.json"));
         EXPECT_TRUE(r.converged);
         for (double flux : r.flux) EXPECT_NEAR(flux, 3.0 / 0.5, 1e-3 * 6.0) << "g " << g;
+    }
+}
+
+// A problem larger than the machine: refused with what it needs, before any
+// allocation (2^24 cells at 36 moments and 168 directions ask for well over
+// this machine's 23 GB; a 256^3 mdom grid that once passed the device's own
+// figure was killed by the kernel at 24 GB instead).
+TEST(Transport, AProblemLargerThanTheMachineIsRefusedWithWhatItNeeds) {
+    const std::string text = R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1024, 1024, 16]},
+        "regions": [{"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1.0, "sigma_s": 0.5, "source": 1.0}],
+        "points": [[0.5, 0.5, 0.5]], "solver": {"directions": 168, "bands": 6}})";
+    try {
+        solveTransport(parseTransportProblemText(text, "huge.json"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("cannot hold the 1024x1024x16 cells of huge.json: it needs"), std::string::npos) << message;
+        EXPECT_NE(message.find("use a smaller grid"), std::string::npos) << message;
     }
 }
 
