@@ -46,10 +46,9 @@ std::vector<TriangleMesh> loadBlockers(const ObjectDesc& desc, std::vector<std::
 }
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : VolumeObject(desc, loadClosedMesh(desc.mesh, warnings), loadBlockers(desc, warnings), warnings) {}
+    : VolumeObject(desc, loadClosedMesh(desc.mesh, warnings), loadBlockers(desc, warnings)) {}
 
-VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers,
-                           std::vector<std::string>& /*warnings*/)
+VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers)
     : desc_(desc), objectMesh_(std::move(mesh)),
       mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)),
       boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
@@ -170,8 +169,7 @@ VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const Medi
         fp.addBytes(&d.bounds, sizeof d.bounds);
     }
     desc.fingerprint = fp.value();
-    std::vector<std::string> warnings;
-    return VolumeObject(desc, std::move(mesh), std::move(blockers), warnings);
+    return VolumeObject(desc, std::move(mesh), std::move(blockers));
 }
 
 std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings) {

@@ -23,8 +23,7 @@ public:
     VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings);
     // The same from meshes already in memory (closedMesh, core/triangle_mesh.h):
     // desc.mesh and desc.medium.blockers only name them in errors.
-    VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers,
-                 std::vector<std::string>& warnings);
+    VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers);
 
     const ObjectDesc& desc() const { return desc_; }
     const TriangleMesh& mesh() const { return mesh_; }  // in the world

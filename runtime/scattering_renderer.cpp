@@ -101,8 +101,9 @@ void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples) {
 
 void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement) {
     checkIndex("setPlacement", index, impl_->objects.size());
-    if (!(placement.scale > 0.0) || !std::isfinite(placement.scale) || !isFinite(placement.translation))
-        throw Error("setPlacement: the scale must be positive and finite and the translation finite");
+    bool finite = placement.scale > 0.0 && std::isfinite(placement.scale) && isFinite(placement.translation);
+    for (int c = 0; c < 3; ++c) finite = finite && isFinite(placement.rotation[c]);
+    if (!finite) throw Error("setPlacement: the scale must be positive and finite, the rotation and translation finite");
     GpuObject& o = impl_->objects[index];
     if (placement == o.placement) return;
     o.placement = placement;
