@@ -167,9 +167,9 @@ int main(int argc, char** argv) {
             }
             if (scalesOnly) return 0;
         }
-        std::printf("frames at the default scattering resolution (1/%d here); useful fragments at full resolution\n\n"
-                    "| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n",
-                    scatterScaleFor(size, size));
+        std::printf("frames at the default scattering resolution (by the samples' radius on screen); useful "
+                    "fragments at full resolution\n\n"
+                    "| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n");
         for (int count : {25000, 50000, 100000}) {
             const SampleSet samples = samplesFor(count);
             double useful = 0.0;

@@ -44,12 +44,29 @@ struct ScatteringRenderer::Impl {
     }
 };
 
-int scatterScaleFor(int width, int height) {
-    const int shorter = std::min(width, height);
+int scatterScaleFor(double radiusPixels) {
     int scale = 1;
-    while (scale < 4 && shorter / (2 * scale) >= kMinScatterPixels) scale *= 2;
+    while (scale < 4 && 2 * scale <= kReducedPixelPerRadius * radiusPixels) scale *= 2;
     return scale;
 }
+
+namespace {
+// The smallest mean Poisson radius of the objects' samples, in pixels at each
+// object's distance (its placed bounding box's centre); infinity without samples.
+double sampleRadiusPixels(const std::vector<GpuObject>& objects, const ViewSetup& view) {
+    // A pixel spans 2 / (P[1][1] height) per unit of distance.
+    const double pixelPerDistance = 2.0 / (double(view.projection[1][1]) * view.height);
+    double smallest = kInfinity;
+    for (const GpuObject& o : objects) {
+        if (o.opticallyThick || o.samples->size() == 0) continue;
+        const Vec3 centre = o.placement.point(o.boundary->bounds().center());
+        const double distance = std::max(glm::length(centre - Vec3(view.cameraPosition)), 1e-30);
+        const double radius = o.samples->parameters().meanRadius * o.placement.scale;
+        smallest = std::min(smallest, radius / (pixelPerDistance * distance));
+    }
+    return smallest;
+}
+}  // namespace
 
 ScatteringRenderer::ScatteringRenderer(double cutoff) {
     if (!(cutoff > 0.0 && cutoff < 1.0)) throw Error("Gaussian cut-off must lie in (0, 1)");
@@ -144,7 +161,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
     FrameContext frame{view, options, r.objects, r.lights, r.targets, view.projection * view.view, GLuint(target)};
-    int scale = options.scatterScale == 0 ? scatterScaleFor(view.width, view.height) : options.scatterScale;
+    int scale = options.scatterScale == 0 ? scatterScaleFor(sampleRadiusPixels(r.objects, view)) : options.scatterScale;
     if (scale != 1 && scale != 2 && scale != 4) throw Error("DrawOptions::scatterScale must be 0, 1, 2 or 4");
     ViewSetup reduced = view;
     reduced.width = std::max((view.width + scale - 1) / scale, 1);

@@ -51,10 +51,14 @@ struct DrawOptions {
     int scatterScale = 0;
 };
 
-// The reduction DrawOptions::scatterScale 0 picks for a view: the largest of 1,
-// 2 and 4 that leaves the scattering at least kMinScatterPixels on the shorter side.
-inline constexpr int kMinScatterPixels = 128;
-int scatterScaleFor(int width, int height);
+// The reduction DrawOptions::scatterScale 0 picks: the largest of 1, 2 and 4
+// whose reduced pixel is at most kReducedPixelPerRadius of the samples' mean
+// Poisson radius on screen (radiusPixels: the smallest over the objects, at
+// their distance). Measured (docs/runtime.md): the bunny at 800x800 (8.3 px)
+// keeps its error at 1/4; CGAL's elephant at 256x256 (1.4 px: legs, ears and
+// trunk a few pixels across) went from 5.1% to 10.0% at 1/2 and 16% at 1/4.
+inline constexpr double kReducedPixelPerRadius = 0.75;
+int scatterScaleFor(double radiusPixels);
 
 class ScatteringRenderer {
 public:

@@ -14,6 +14,7 @@
 #include "runtime/internal/blocker_shadow_views.h"
 #include "runtime/internal/gpu_layout.h"
 #include "runtime/internal/sample_packing.h"
+#include "runtime/scattering_renderer.h"
 #include "runtime/internal/shader_source.h"
 #include "runtime/view_setup.h"
 
@@ -189,6 +190,20 @@ TEST(BlockerShadowViews, EachFaceSeesItsAxisAndTheDirectionalViewEnclosesTheBloc
         for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(clip[k] / clip.w), 1.0f) << k;
     }
     EXPECT_EQ(views[7], glm::mat4(1.0f));  // a directional light uses one layer
+}
+
+// The default reduction of the scattering follows the samples' radius on screen:
+// a reduced pixel at most 0.75 of it (docs/runtime.md has the measurements).
+TEST(ScatterScale, FollowsTheSamplesRadiusOnScreen) {
+    EXPECT_EQ(scatterScaleFor(1.4), 1);   // CGAL's elephant at 256x256
+    EXPECT_EQ(scatterScaleFor(2.66), 1);
+    EXPECT_EQ(scatterScaleFor(2.67), 2);
+    EXPECT_EQ(scatterScaleFor(5.3), 2);
+    EXPECT_EQ(scatterScaleFor(5.34), 4);
+    EXPECT_EQ(scatterScaleFor(8.3), 4);   // the bunny at 800x800
+    EXPECT_EQ(scatterScaleFor(kInfinity), 4);
+    EXPECT_EQ(scatterScaleFor(0.0), 1);
+    EXPECT_EQ(scatterScaleFor(std::nan("")), 1);
 }
 
 }  // namespace
