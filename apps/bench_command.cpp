@@ -4,6 +4,7 @@
 #include "apps/commands.h"
 #include "apps/run_program.h"
 #include "bench/accuracy_sweep.h"
+#include "bench/cgal_demo_meshes.h"
 #include "core/error.h"
 #include "preprocess/preprocessor.h"
 
@@ -11,7 +12,8 @@ namespace lucent {
 
 Command addBenchCommand(CLI::App& app) {
     struct Options {
-        std::vector<std::string> scenes, knobs;
+        std::vector<std::string> scenes, knobs, cgal;
+        double opticalRadius = 1.0;
         std::string output = "bench-accuracy", backend, quality = "default";
         int size = 0, frames = 7;
         double tolerance = 1e-3;
@@ -23,7 +25,14 @@ Command addBenchCommand(CLI::App& app) {
     CLI::App* sub = bench->add_subcommand(
         "accuracy", "Sweep each quality knob; record preprocessing time, median frame time and error against "
                     "--method reference; write CSV and the error-versus-time plots");
-    sub->add_option("scenes", o->scenes, "Scene files")->required();
+    sub->add_option("scenes", o->scenes, "Scene files");
+    sub->add_option("--cgal", o->cgal,
+                    "Meshes of CGAL's demo data (Debian's libcgal-demo), each in a scene made for it: elephant, "
+                    "eight, fandisk, ...")
+        ->delimiter(',');
+    sub->add_option("--optical-radius", o->opticalRadius,
+                    "sigma_t times the smallest half-extent of each --cgal mesh's box (default 1)")
+        ->check(finiteRange(1e-3, 1e3));
     sub->add_option("-o,--output", o->output, "Directory for accuracy.csv and the plots");
     std::string knobHelp = "Knobs to sweep (default all):";
     for (const std::string& k : accuracyKnobNames()) knobHelp += " " + k;
@@ -46,6 +55,12 @@ Command addBenchCommand(CLI::App& app) {
         accuracySweep(options.knobs, options.base);  // rejects an unknown knob before any work
         std::vector<std::filesystem::path> scenes(o->scenes.begin(), o->scenes.end());
         std::filesystem::create_directories(o->output);
+        for (const std::string& name : o->cgal) {
+            const std::filesystem::path dir = std::filesystem::path(o->output) / "cgal";
+            scenes.push_back(writeMeshScene(extractCgalDemoMesh(name, dir), dir, o->opticalRadius,
+                                            o->size > 0 ? o->size : 256));
+        }
+        if (scenes.empty()) throw Error("lucent bench accuracy: give scene files, --cgal meshes, or both");
         const std::filesystem::path csv = std::filesystem::path(o->output) / "accuracy.csv";
         runAccuracyBench(scenes, options, csv);
         std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());
