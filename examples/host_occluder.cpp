@@ -3,7 +3,10 @@
 // front of the sphere: Lucent reads the host's depth texture, so the light the
 // sphere scatters behind the box stays hidden.
 //
-//   lucent-example-host SCENE.json OUT.pfm [--no-occluder] [--depth32f]
+//   lucent-example-host SCENE.json OUT.pfm [--no-occluder] [--depth32f] [--full-resolution]
+//
+// --full-resolution draws Lucent's scattering at every pixel instead of its
+// default, reduced where the samples allow (DrawOptions::scatterScale).
 //
 // --depth32f gives the host a GL_DEPTH_COMPONENT32F depth texture instead of
 // GL_DEPTH24_STENCIL8: Lucent reads either.
@@ -60,13 +63,14 @@ std::vector<glm::vec3> box(glm::vec3 lo, glm::vec3 hi) {
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder] [--depth32f]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder] [--depth32f] [--full-resolution]\n", argv[0]);
         return 2;
     }
-    bool occluder = true, depth32f = false;
+    bool occluder = true, depth32f = false, fullResolution = false;
     for (int a = 3; a < argc; ++a) {
         if (std::strcmp(argv[a], "--no-occluder") == 0) occluder = false;
         else if (std::strcmp(argv[a], "--depth32f") == 0) depth32f = true;
+        else if (std::strcmp(argv[a], "--full-resolution") == 0) fullResolution = true;
         else {
             std::fprintf(stderr, "lucent-example-host: unknown option %s\n", argv[a]);
             return 2;
@@ -134,6 +138,7 @@ int main(int argc, char** argv) {
         lucentRenderer.setLights(scene.lights);
         lucent::DrawOptions options;
         options.hostDepthTexture = depth;
+        if (fullResolution) options.scatterScale = 1;
         lucentRenderer.draw(view, options);
 
         std::vector<float> rgba(size_t(w) * h * 4);
