@@ -15,10 +15,11 @@ uniform vec2 reducedPerPixel;     // reduced pixels per pixel, per axis
 
 out vec4 colour;
 
-// Entry distance and the length inside: what the scattered light depends on.
+// Entry distance and the length of the first interval inside: what the
+// scattered light depends on most. Only the first: the full-resolution targets
+// peel no further when the scattering is reduced (FrameTargets::draw).
 vec2 way(vec4 inside) {
-    float length = max(inside.y - inside.x, 0.0) + max(inside.w - inside.z, 0.0);
-    return vec2(inside.x, length);
+    return vec2(inside.x, max(inside.y - inside.x, 0.0));
 }
 
 void main() {
