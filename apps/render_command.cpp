@@ -70,10 +70,6 @@ Command addRenderCommand(CLI::App& app) {
         if (o->threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
         LoadedScene loaded = loadScene(scene, method.entry->needsSamples);
-        for (const auto& obj : loaded.objects)
-            if (obj.desc().medium.ior != 1.0)
-                loaded.warnings.push_back(obj.desc().name + ": ior " + std::to_string(obj.desc().medium.ior) +
-                                          " is treated as index-matched (refraction is not simulated by single scattering)");
         printWarnings(loaded.warnings);
         MethodSettings settings;
         settings.surface = !o->noSurface && scene.render.surface;

@@ -8,6 +8,7 @@
 
 namespace lucent {
 
+using Vec2 = glm::dvec2;
 using Vec3 = glm::dvec3;
 using Rgb = glm::dvec3;
 

@@ -5,7 +5,7 @@
 namespace lucent {
 
 std::vector<std::string> GridMethod::limitations(const LoadedScene& scene) const {
-    return SsMethod().limitations(scene);
+    return SsMethod::sampleLimitations(scene);
 }
 
 Image GridMethod::render(const LoadedScene& scene, const MethodSettings& settings) {

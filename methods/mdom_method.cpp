@@ -13,7 +13,8 @@ std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene) const
         const MediumDesc& m = o.desc().medium;
         if (m.ior != 1.0)
             out.push_back("object '" + o.desc().name +
-                          "': ior differs from 1: mdom marches light in straight lines (thesis 5.2), index-matched");
+                          "': ior differs from 1: mdom marches light in straight lines (thesis 5.2) and takes the boundary as "
+                          "index-matched: no refraction, no reflection (--method path refracts)");
         if (std::abs(m.g) > 0.5)
             out.push_back("object '" + o.desc().name +
                           "': |g| > 0.5: mdom misses the 10% goal in strongly forward-scattering media, measured 10-21% "

@@ -1,8 +1,27 @@
 #include "reference/path_method.h"
 
+#include <algorithm>
+
 #include "reference/path_tracer.h"
 
 namespace lucent {
+
+std::vector<std::string> PathMethod::limitations(const LoadedScene& scene) const {
+    std::vector<std::string> out;
+    const auto& objects = scene.objects;
+    const bool refracting = std::any_of(objects.begin(), objects.end(),
+                                        [](const VolumeObject& o) { return o.desc().medium.ior != 1.0; });
+    if (!refracting) return out;
+    for (size_t i = 0; i < objects.size(); ++i)
+        for (size_t j = i + 1; j < objects.size(); ++j) {
+            const Bounds3 a = objects[i].mesh().bounds(), b = objects[j].mesh().bounds();
+            if (glm::all(glm::lessThan(a.min, b.max)) && glm::all(glm::lessThan(b.min, a.max)))
+                out.push_back("objects '" + objects[i].desc().name + "' and '" + objects[j].desc().name +
+                              "' may overlap: with a refracting boundary in the scene the path tracer takes each "
+                              "boundary to separate one medium from the air, and is wrong where objects overlap");
+        }
+    return out;
+}
 
 Image PathMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
     PathSettings path;

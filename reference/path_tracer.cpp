@@ -11,20 +11,12 @@
 #include "core/camera_rays.h"
 #include "core/progress.h"
 #include "reference/light_arrival.h"
+#include "reference/path_channels.h"
+#include "reference/refraction.h"
 #include "reference/surface_reflection.h"
 
 namespace lucent {
 namespace {
-
-double channelOf(const Rgb& c, int channel) { return channel < 0 ? c.r : c[channel]; }
-
-// Keeps only the traced channel of an RGB weight.
-Rgb masked(const Rgb& c, int channel) {
-    if (channel < 0) return c;
-    Rgb m(0.0);
-    m[channel] = c[channel];
-    return m;
-}
 
 // The largest extinction the object's medium reaches in the channel: delta tracking's majorant.
 double majorant(const VolumeObject& o, int channel) {
@@ -71,6 +63,7 @@ PathTracer::PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& 
     for (const VolumeObject& o : objects_) {
         const Rgb& s = o.desc().medium.sigmaT;
         grey_ = grey_ && s.r == s.g && s.g == s.b;
+        refracting_ = refracting_ || o.desc().medium.ior != 1.0;
     }
 }
 
@@ -95,20 +88,24 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
         for (const Interval& i : intervals) spans.push_back({i, &o});
     }
     std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.interval.t0 < b.interval.t0; });
-    for (const Span& span : spans) {
-        const VolumeObject& o = *span.object;
-        const double mu = majorant(o, channel);
-        if (!(mu > 0.0)) continue;
-        const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
-        // Delta tracking: tentative collisions at rate mu, real with probability sigma(x) / mu.
-        for (double t = span.interval.t0;;) {
-            t -= std::log(1.0 - rng.uniform()) / mu;
-            if (t >= span.interval.t1) break;
-            const double sigma = sigmaT * o.density().at(origin + t * dir);
-            if (rng.uniform() * mu < sigma) return Collision{t, &o};
-        }
-    }
+    for (const Span& span : spans)
+        if (const std::optional<double> t = sampleCollisionIn(*span.object, origin, dir, span.interval, rng, channel))
+            return Collision{*t, span.object};
     return std::nullopt;
+}
+
+std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
+                                                    const Interval& span, Rng& rng, int channel) {
+    const double mu = majorant(o, channel);
+    if (!(mu > 0.0)) return std::nullopt;
+    const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
+    // Delta tracking: tentative collisions at rate mu, real with probability sigma(x) / mu.
+    for (double t = span.t0;;) {
+        t -= std::log(1.0 - rng.uniform()) / mu;
+        if (t >= span.t1) return std::nullopt;
+        const double sigma = sigmaT * o.density().at(origin + t * dir);
+        if (rng.uniform() * mu < sigma) return t;
+    }
 }
 
 Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
@@ -122,29 +119,39 @@ Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Ve
     return sum;
 }
 
-Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
-                         int channel) const {
+Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
+                            int channel) const {
+    // At the first front face before any blocker, as the reference adds it.
     Rgb total(0.0);
-    // The surface term at the first front face before any blocker, as the reference adds it.
-    double tStop = blockerDistance(origin, dir);
-    if (settings.surface && scene_.render.surface) {
-        double nearest = kInfinity;
-        std::vector<Crossing> crossings;
-        for (const VolumeObject& o : objects_) {
-            if (!o.desc().surface) continue;
-            o.boundary().crossings(origin, dir, crossings);
-            if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
-                nearest = crossings.front().t;
-                const Vec3 hit = origin + nearest * dir;
-                total = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
-                                               o.shadingNormal(crossings.front().face, hit), dir);
-            }
+    if (!settings.surface || !scene_.render.surface) return total;
+    double nearest = kInfinity;
+    std::vector<Crossing> crossings;
+    for (const VolumeObject& o : objects_) {
+        if (!o.desc().surface) continue;
+        o.boundary().crossings(origin, dir, crossings);
+        if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
+            nearest = crossings.front().t;
+            const Vec3 hit = origin + nearest * dir;
+            total = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
+                                           o.shadingNormal(crossings.front().face, hit), dir);
         }
-        total = masked(total, channel);
     }
+    return masked(total, channel);
+}
+
+const VolumeObject* PathTracer::containing(const Vec3& p) const {
     const VolumeObject* inside = nullptr;
     for (const VolumeObject& o : objects_)
-        if (o.contains(origin)) inside = &o;
+        if (o.contains(p)) inside = &o;
+    return inside;
+}
+
+Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+                         int channel) const {
+    if (refracting_) return refractedRadiance(origin, dir, rng, settings, channel);
+    double tStop = blockerDistance(origin, dir);
+    Rgb total = surfaceTerm(origin, dir, tStop, settings, channel);
+    const VolumeObject* inside = containing(origin);
     Vec3 x = origin, w = dir;
     Rgb throughput(1.0);
     for (int collisions = 0; collisions < settings.maxScatter; ++collisions) {
@@ -170,10 +177,9 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const Pa
 }
 
 PathTracer::Exit PathTracer::walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const {
+    if (refracting_) return refractedWalk(origin, dir, rng, maxScatter, channel);
     Exit exit;
-    const VolumeObject* inside = nullptr;
-    for (const VolumeObject& o : objects_)
-        if (o.contains(origin)) inside = &o;
+    const VolumeObject* inside = containing(origin);
     Vec3 x = origin, w = dir;
     while (true) {
         const double tStop = blockerDistance(x, w);

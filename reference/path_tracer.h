@@ -6,8 +6,10 @@
 // density, unbiased for layers and grids), and at every collision gathers each
 // light directly (next-event estimation: the transmittance to the light is the
 // exact exp(-sigma_t path integral), through every object, zero through a
-// blocker) before scattering by Henyey-Greenstein. Boundaries are index-matched;
-// blockers absorb. Paths end after maxScatter collisions (1: single scattering,
+// blocker) before scattering by Henyey-Greenstein. An object whose ior is 1 has
+// an index-matched boundary; any other reflects and refracts by Fresnel's
+// equations, and the lights reach its inside through it (reference/refraction.h,
+// reference/refracted_paths.cpp). Blockers absorb. Paths end after maxScatter collisions (1: single scattering,
 // which must agree with --method reference) or by Russian roulette.
 //
 // Media whose sigma_t differs between colour channels are traced once per
@@ -74,6 +76,22 @@ private:
     // object origin lies in (nullptr: none).
     std::optional<Collision> sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
                                              const VolumeObject* inside, Rng& rng, int channel) const;
+    // The first real collision in o within span along origin + t dir, by delta tracking.
+    static std::optional<double> sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
+                                                   const Interval& span, Rng& rng, int channel);
+    // The Phong surface term at the first front face before tStop, as the reference adds it.
+    Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
+                    int channel) const;
+    // The object p lies in, or nullptr.
+    const VolumeObject* containing(const Vec3& p) const;
+    // radiance() and walk() in a scene with a refracting boundary (reference/refraction.h):
+    // paths go from boundary to boundary, reflected or refracted by Fresnel's odds there.
+    Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+                          int channel) const;
+    Exit refractedWalk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
+    // The light gathered at a collision in a refracting scene: through the boundary
+    // for a refracting object, along straight lines for an index-matched one.
+    Rgb gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;
     // Where the ray stops at an opaque blocker, or infinity.
     double blockerDistance(const Vec3& origin, const Vec3& dir) const;
     // sum_j p(w_j, dir) E_j T_j at x: the light arriving at x, scattered along dir.
@@ -82,6 +100,7 @@ private:
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;
     bool grey_ = true;
+    bool refracting_ = false;  // some object's ior differs from 1
 };
 
 // A direction from the Henyey-Greenstein distribution with mean cosine g around

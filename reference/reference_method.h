@@ -7,6 +7,9 @@ namespace lucent {
 class ReferenceMethod final : public Method {
 public:
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
+    std::vector<std::string> limitations(const LoadedScene& scene) const override {
+        return indexMatchedWarnings(scene, "reference");
+    }
 };
 
 }  // namespace lucent

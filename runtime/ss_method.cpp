@@ -14,6 +14,12 @@ namespace lucent {
 constexpr float kMeasuredWidthFactors[2] = {1.0f, 2.5f};
 
 std::vector<std::string> SsMethod::limitations(const LoadedScene& scene) const {
+    std::vector<std::string> out = indexMatchedWarnings(scene, "ss");
+    for (std::string& line : sampleLimitations(scene)) out.push_back(std::move(line));
+    return out;
+}
+
+std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene) {
     std::vector<std::string> out;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const VolumeObject& o = scene.objects[i];

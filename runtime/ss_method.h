@@ -10,9 +10,12 @@ class SsMethod final : public Method {
 public:
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"
-    // Lights inside an object or within a sample spacing of its boundary, and
-    // Gaussians far wider or narrower than their spacing (docs/accuracy.md, Extremes).
+    // sampleLimitations, and boundaries taken as index-matched.
     std::vector<std::string> limitations(const LoadedScene& scene) const override;
+    // Lights inside an object or within a sample spacing of its boundary, other
+    // objects in a light's way, and Gaussians far wider or narrower than their
+    // spacing (docs/accuracy.md, Extremes): what every method drawing the samples shares.
+    static std::vector<std::string> sampleLimitations(const LoadedScene& scene);
 
 private:
     std::string backend_;

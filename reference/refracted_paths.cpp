@@ -1,0 +1,149 @@
+// The path tracer in a scene with a refracting boundary (an object whose ior
+// differs from 1): paths go from boundary to boundary. Inside an object,
+// collisions come by delta tracking up to the boundary ahead; at the boundary
+// the path is reflected with Fresnel's probability and refracted otherwise, so
+// Fresnel's factor is the odds and not a weight. Radiance divided by n^2 is
+// conserved across a boundary (Veach 1997, 5.2): a camera path that goes into a
+// medium of index n carries radiance n^2 times larger there, which the
+// crossing's factor 1/n^2 brings back (n^2 on the way out). Objects of such a
+// scene must not overlap: each boundary separates one medium from the air.
+#include <algorithm>
+#include <cmath>
+
+#include "core/math.h"
+#include "reference/light_arrival.h"
+#include "reference/path_channels.h"
+#include "reference/path_tracer.h"
+#include "reference/refraction.h"
+
+namespace lucent {
+namespace {
+
+// Boundary crossings a path may make before it is given up (a ray trapped by
+// total internal reflection in a clear box would never end).
+constexpr int kMaxBoundaryEvents = 256;
+
+struct Next {
+    std::optional<BoundaryHit> hit;
+    const VolumeObject* object = nullptr;
+};
+
+// The next boundary along x + t w: the inside object's, or the nearest of all from outside.
+Next nextBoundary(const std::vector<VolumeObject>& objects, const VolumeObject* inside, const Vec3& x, const Vec3& w) {
+    Next next;
+    if (inside) return Next{nextBoundaryHit(*inside, x, w), inside};
+    for (const VolumeObject& o : objects) {
+        const std::optional<BoundaryHit> h = nextBoundaryHit(o, x, w);
+        if (h && (!next.hit || h->t < next.hit->t)) next = Next{h, &o};
+    }
+    return next;
+}
+
+// Reflects or refracts w at the boundary by Fresnel's odds and moves the path
+// to the side it goes on; returns what the crossing multiplies the radiance
+// carried back along the path by.
+double cross(const Next& next, Vec3& w, const VolumeObject*& inside, Rng& rng) {
+    const BoundaryHit& hit = *next.hit;
+    const double n = next.object->desc().medium.ior;
+    const Vec3 facing = hit.entering ? hit.normal : -hit.normal;
+    const double eta = hit.entering ? 1.0 / n : n;
+    const double cosine = -glm::dot(w, facing);
+    // A shading normal turned away from the ray: let it through unbent.
+    const std::optional<Vec3> refracted = cosine > 0.0 ? refractedDirection(w, facing, eta) : std::optional<Vec3>(w);
+    const double reflectance = cosine > 0.0 ? fresnelReflectance(cosine, eta) : 0.0;
+    if (!refracted || rng.uniform() < reflectance) {
+        w = reflectedDirection(w, hit.normal);
+        return 1.0;
+    }
+    w = *refracted;
+    inside = hit.entering ? next.object : nullptr;
+    return cosine > 0.0 ? (hit.entering ? 1.0 / (n * n) : n * n) : 1.0;
+}
+
+}  // namespace
+
+Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
+    if (object.desc().medium.ior == 1.0) return gatherLights(object, x, dir);
+    Rgb sum(0.0);
+    for (const Light& light : scene_.lights) {
+        const std::optional<RefractedArrival> a = lightThroughBoundary(object, objects_, light, x);
+        if (!a) continue;
+        sum += henyeyGreenstein(glm::dot(a->toLight, dir), object.desc().medium.g) * a->irradiance *
+               transmittance(object.desc().medium.sigmaT, object.densityPath(x, a->toLight, a->inside));
+    }
+    return sum;
+}
+
+Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+                                  int channel) const {
+    Rgb total = surfaceTerm(origin, dir, blockerDistance(origin, dir), settings, channel);
+    const VolumeObject* inside = containing(origin);
+    Vec3 x = origin, w = dir;
+    Rgb throughput(1.0);
+    int collisions = 0;
+    for (int events = 0; events < kMaxBoundaryEvents;) {
+        const double tBlocker = blockerDistance(x, w);
+        const Next next = nextBoundary(objects_, inside, x, w);
+        const double tBoundary = next.hit ? next.hit->t : kInfinity;
+        if (inside) {
+            const Interval span{0.0, std::min(tBoundary, tBlocker)};
+            if (const std::optional<double> t = sampleCollisionIn(*inside, x, w, span, rng, channel)) {
+                x += *t * w;
+                // The collision estimator, as in radiance(): the albedo is the collision's weight.
+                throughput *= masked(inside->desc().medium.albedo, channel);
+                total += throughput * masked(gatherLightsRefracted(*inside, x, w), channel);
+                if (++collisions >= settings.maxScatter) break;
+                if (collisions > 3) {
+                    const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
+                    if (rng.uniform() >= keep) break;
+                    throughput /= keep;
+                }
+                const double xi1 = rng.uniform(), xi2 = rng.uniform();
+                w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+                continue;
+            }
+        }
+        if (!next.hit || tBlocker <= tBoundary) break;  // escapes, or a blocker absorbs it
+        x = next.hit->point;
+        throughput *= cross(next, w, inside, rng);
+        ++events;
+    }
+    return total;
+}
+
+PathTracer::Exit PathTracer::refractedWalk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter,
+                                           int channel) const {
+    Exit exit;
+    const VolumeObject* inside = containing(origin);
+    Vec3 x = origin, w = dir;
+    for (int events = 0; events < kMaxBoundaryEvents;) {
+        const double tBlocker = blockerDistance(x, w);
+        const Next next = nextBoundary(objects_, inside, x, w);
+        const double tBoundary = next.hit ? next.hit->t : kInfinity;
+        if (inside) {
+            const Interval span{0.0, std::min(tBoundary, tBlocker)};
+            if (const std::optional<double> t = sampleCollisionIn(*inside, x, w, span, rng, channel)) {
+                if (exit.collisions == maxScatter) return exit;
+                x += *t * w;
+                exit.weight *= inside->desc().medium.albedo;
+                ++exit.collisions;
+                const double xi1 = rng.uniform(), xi2 = rng.uniform();
+                w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+                continue;
+            }
+        }
+        if (tBlocker < tBoundary) return exit;  // absorbed by a blocker
+        if (!next.hit) {
+            exit.escaped = true;
+            exit.position = x;
+            exit.direction = w;
+            return exit;
+        }
+        x = next.hit->point;
+        cross(next, w, inside, rng);
+        ++events;
+    }
+    return exit;  // trapped: counted as not escaped
+}
+
+}  // namespace lucent

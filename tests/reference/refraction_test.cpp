@@ -1,0 +1,222 @@
+// Refracting boundaries in the path tracer, against results computed here
+// independently of reference/refraction.cpp:
+// - Fresnel's equations in their angle form (Born and Wolf, Principles of
+//   Optics, 1.5.3: R_s = sin^2(i - t) / sin^2(i + t), R_p = tan^2(i - t) /
+//   tan^2(i + t)), and ((n - 1) / (n + 1))^2 at normal incidence;
+// - an absorbing slab between two such boundaries: its transmittance and
+//   reflectance summed over the internal reflections (a geometric series);
+// - the power a sphere takes in from a point light (a one-dimensional
+//   quadrature over the cone of directions that meet it) against the power its
+//   medium removes from the irradiance that next-event estimation finds through
+//   the boundary, integrated over the volume;
+// - the single scattering of a half-space under a beam, seen from outside: a
+//   closed form with Snell's angles, both Fresnel transmissions and the n^2 law
+//   of radiance.
+#include "reference/refraction.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "reference/path_tracer.h"
+#include "tests/support/test_support.h"
+
+namespace lucent {
+namespace {
+
+double fresnelByAngles(double incident, double n) {
+    if (incident == 0.0) return std::pow((n - 1.0) / (n + 1.0), 2);
+    const double t = std::asin(std::sin(incident) / n);
+    const double rs = std::sin(incident - t) / std::sin(incident + t);
+    const double rp = std::tan(incident - t) / std::tan(incident + t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+TEST(Refraction, FresnelReflectanceIsTheAngleFormBothWays) {
+    for (double n : {1.33, 1.5, 2.4}) {
+        EXPECT_NEAR(fresnelReflectance(1.0, 1.0 / n), std::pow((n - 1.0) / (n + 1.0), 2), 1e-12);
+        for (double degrees = 1.0; degrees < 90.0; degrees += 2.0) {
+            const double i = radians(degrees), t = std::asin(std::sin(i) / n);
+            const double expected = fresnelByAngles(i, n);
+            EXPECT_NEAR(fresnelReflectance(std::cos(i), 1.0 / n), expected, 1e-12) << n << " " << degrees;
+            // From inside at the refracted angle: the same (Stokes' relations).
+            EXPECT_NEAR(fresnelReflectance(std::cos(t), n), expected, 1e-12) << n << " " << degrees;
+        }
+        // Past the critical angle from inside: total reflection.
+        EXPECT_EQ(fresnelReflectance(std::cos(std::asin(1.0 / n) + 1e-6), n), 1.0);
+    }
+}
+
+TEST(Refraction, RefractedDirectionsObeySnellInThePlaneOfIncidence) {
+    const Vec3 normal(0.0, 0.0, 1.0);
+    for (double degrees : {0.0, 10.0, 45.0, 80.0}) {
+        const double i = radians(degrees);
+        const Vec3 w(std::sin(i), 0.0, -std::cos(i));
+        const std::optional<Vec3> t = refractedDirection(w, normal, 1.0 / 1.5);
+        ASSERT_TRUE(t);
+        EXPECT_NEAR(glm::length(*t), 1.0, 1e-12);
+        EXPECT_NEAR(t->x, std::sin(i) / 1.5, 1e-12);  // sin t = sin i / n, same side
+        EXPECT_NEAR(t->y, 0.0, 1e-15);
+        EXPECT_LT(t->z, 0.0);
+        // And back out along the incident direction.
+        const std::optional<Vec3> back = refractedDirection(*t, normal, 1.5);
+        ASSERT_TRUE(back);
+        EXPECT_NEAR(glm::length(*back - w), 0.0, 1e-12);
+    }
+    EXPECT_FALSE(refractedDirection(glm::normalize(Vec3(1.0, 0.0, -0.5)), normal, 1.5));  // 63 degrees > 41.8
+}
+
+struct Tally {
+    double transmitted = 0.0, reflected = 0.0, parallelOut = 0.0;
+};
+
+// Analog walks into the slab [-40, 40]^2 x [0, 1] (index n) at incidence
+// degrees from its normal; maxScatter 0: a collision ends the walk (absorbed).
+Tally walkSlab(double degrees, double n, double albedo, int maxScatter, int walks) {
+    test::ScratchDir dir;
+    SceneDesc scene;
+    ObjectDesc o = test::simpleObject(test::writeBox(dir, "slab.obj", Vec3(-40, -40, 0), Vec3(40, 40, 1)), 1.0, albedo);
+    o.medium.ior = n;
+    o.medium.g = 0.5;
+    scene.objects = {o};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const PathTracer tracer(scene, objects);
+    const double i = radians(degrees);
+    const Vec3 w(std::sin(i), 0.0, -std::cos(i)), origin = Vec3(0.0, 0.0, 1.0) - 3.0 * w;
+    Tally tally;
+    for (int k = 0; k < walks; ++k) {
+        Rng rng(7, uint64_t(k));
+        const PathTracer::Exit e = tracer.walk(origin, w, rng, maxScatter, -1);
+        if (!e.escaped) continue;
+        if (e.direction.z < 0.0) tally.transmitted += 1.0 / walks;
+        else tally.reflected += 1.0 / walks;
+        if (e.direction.z < 0.0 && glm::length(e.direction - w) < 1e-9) tally.parallelOut += 1.0 / walks;
+    }
+    return tally;
+}
+
+void expectProportion(double measured, double expected, int walks, const char* what) {
+    const double standardError = std::sqrt(expected * (1.0 - expected) / walks);
+    std::printf("%s: %.5f (expected %.5f, standard error %.5f)\n", what, measured, expected, standardError);
+    EXPECT_NEAR(measured, expected, std::max(3.0 * standardError, 1e-4)) << what;
+}
+
+TEST(Refraction, AbsorbingSlabSumsItsInternalReflections) {
+    const double n = 1.5;
+    const int walks = 60000;
+    for (double degrees : {0.0, 60.0}) {
+        const double i = radians(degrees), t = std::asin(std::sin(i) / n);
+        const double r = fresnelByAngles(i, n), a = std::exp(-1.0 / std::cos(t));  // one crossing's transmittance
+        const double denominator = 1.0 - r * r * a * a;
+        const double transmitted = (1.0 - r) * (1.0 - r) * a / denominator;
+        const double reflected = r + (1.0 - r) * (1.0 - r) * r * a * a / denominator;
+        const Tally tally = walkSlab(degrees, n, 0.0, 0, walks);
+        std::printf("incidence %.0f degrees:\n", degrees);
+        expectProportion(tally.transmitted, transmitted, walks, "transmitted");
+        expectProportion(tally.reflected, reflected, walks, "reflected");
+        // Out through the far side parallel to the way in: Snell's law both ways.
+        EXPECT_DOUBLE_EQ(tally.parallelOut, tally.transmitted);
+    }
+}
+
+TEST(Refraction, ConservativeSlabLosesNoParticle) {
+    const Tally tally = walkSlab(30.0, 1.5, 1.0, 1 << 20, 4000);
+    std::printf("escaped: %.5f\n", tally.transmitted + tally.reflected);
+    EXPECT_GT(tally.transmitted + tally.reflected, 0.999);
+}
+
+TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
+    // Unit sphere of index 1.5, sigma_t 8, a point light of intensity 1 at distance 4.
+    SceneDesc scene;
+    ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.0);
+    o.medium.ior = 1.5;
+    scene.objects = {o};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const VolumeObject& sphere = objects.front();
+    Light light;
+    light.position = Vec3(0.0, 0.0, 4.0);
+    light.power = Rgb(1.0);
+    // Taken in: the cone of directions from the light that meet the sphere, each
+    // transmitted by 1 - R at its incidence (sin i = 4 sin theta).
+    double takenIn = 0.0;
+    const int steps = 4000;
+    const double cone = std::asin(0.25);
+    for (int k = 0; k < steps; ++k) {
+        const double theta = (k + 0.5) / steps * cone;
+        takenIn += 2.0 * kPi * (1.0 - fresnelByAngles(std::asin(std::min(1.0, 4.0 * std::sin(theta))), 1.5)) *
+                   std::sin(theta) * cone / steps;
+    }
+    // Removed: sigma_t times the irradiance through the boundary, attenuated
+    // inside, over the volume (midpoint rule in r and the angle to the light's
+    // axis; the field is symmetric about it). With sigma_t 8 the shortest chord
+    // (1.49) lets e^-12 of it out again.
+    double removed = 0.0;
+    const int radial = 160, polar = 64;
+    for (int a = 0; a < radial; ++a) {
+        const double r = (a + 0.5) / radial;
+        for (int b = 0; b < polar; ++b) {
+            const double theta = (b + 0.5) / polar * kPi;
+            const Vec3 x(r * std::sin(theta), 0.0, r * std::cos(theta));
+            const std::optional<RefractedArrival> arrival = lightThroughBoundary(sphere, objects, light, x);
+            if (!arrival) continue;
+            const double attenuation = std::exp(-8.0 * sphere.densityPath(x, arrival->toLight, arrival->inside));
+            removed += 8.0 * arrival->irradiance.r * attenuation * 2.0 * kPi * r * r * std::sin(theta) *
+                       (1.0 / radial) * (kPi / polar);
+        }
+    }
+    std::printf("taken in %.5f, removed %.5f (%+.2f%%)\n", takenIn, removed, 100.0 * (removed / takenIn - 1.0));
+    // Tolerance: the 20480-face sphere and the midpoint rules, 1%.
+    EXPECT_NEAR(removed, takenIn, 0.01 * takenIn);
+}
+
+TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
+    const double n = 1.5, sigmaT = 2.0, albedo = 0.8, g = 0.3;
+    const double lightAngle = radians(30.0), viewAngle = radians(45.0);
+    test::ScratchDir dir;
+    SceneDesc scene;
+    ObjectDesc o = test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
+    o.medium.ior = n;
+    o.medium.g = g;
+    scene.objects = {o};
+    Light beam;
+    beam.type = Light::Type::Directional;
+    beam.direction = Vec3(std::sin(lightAngle), 0.0, -std::cos(lightAngle));
+    beam.power = Rgb(kPi);
+    scene.lights = {beam};
+    scene.camera.position = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
+    scene.camera.target = Vec3(0.0);
+    scene.camera.up = Vec3(1, 0, 0);
+    scene.camera.fovYDegrees = 0.01;
+    scene.camera.width = scene.camera.height = 2;
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    PathSettings settings;
+    settings.samplesPerPixel = 20000;
+    settings.maxScatter = 1;
+    const PathTracer::Result result = PathTracer(scene, objects).render(settings);
+    double mean = 0.0, variance = 0.0;
+    for (size_t i = 0; i < 4; ++i) {
+        mean += result.mean.pixels[i].g / 4.0;
+        variance += std::pow(result.standardError.pixels[i].g / 4.0, 2);
+    }
+    // Inside: the beam along t_l, the view ray along t_v (Snell), the phase at their angle.
+    const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
+    const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
+    const double cosScatter = -cosLight * cosView;  // t_l . (-t_v): both go down, in perpendicular planes
+    const double phase = (1.0 - g * g) / (4.0 * kPi * std::pow(1.0 + g * g - 2.0 * g * cosScatter, 1.5));
+    const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
+    const double radianceInside = albedo * phase * irradianceInside / (1.0 + cosView / cosLight);
+    const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * radianceInside;
+    const double standardError = std::sqrt(variance);
+    std::printf("radiance %.6g +- %.2g (expected %.6g, %+.2f%%)\n", mean, standardError, expected,
+                100.0 * (mean / expected - 1.0));
+    EXPECT_NEAR(mean, expected, std::max(3.0 * standardError, 0.005 * expected));
+}
+
+}  // namespace
+}  // namespace lucent
