@@ -29,6 +29,7 @@ LUCENT_GPU_CONSTANT(kUnitShadowDistances, 1)  // blocker distance maps (runtime/
 LUCENT_GPU_CONSTANT(kUnitGridSource, 2)       // a multiple-scattering grid's source (runtime/internal/grid_pass.h)
 LUCENT_GPU_CONSTANT(kUnitGridExtinction, 3)   // and its extinction
 LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the two intervals inside the objects
+LUCENT_GPU_CONSTANT(kUnitGridRefraction, 5)   // a multiple-scattering grid's index and its gradient
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)

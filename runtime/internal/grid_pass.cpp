@@ -12,11 +12,12 @@ namespace lucent {
 
 namespace {
 
-GLuint texture3d(const ScatteringGrid& grid, const std::vector<float>& rgb) {
+GLuint texture3d(const ScatteringGrid& grid, const std::vector<float>& values, bool rgba = false) {
     GLuint t = 0;
     glCreateTextures(GL_TEXTURE_3D, 1, &t);
-    glTextureStorage3D(t, 1, GL_RGB32F, grid.dims[0], grid.dims[1], grid.dims[2]);
-    glTextureSubImage3D(t, 0, 0, 0, 0, grid.dims[0], grid.dims[1], grid.dims[2], GL_RGB, GL_FLOAT, rgb.data());
+    glTextureStorage3D(t, 1, rgba ? GL_RGBA32F : GL_RGB32F, grid.dims[0], grid.dims[1], grid.dims[2]);
+    glTextureSubImage3D(t, 0, 0, 0, 0, grid.dims[0], grid.dims[1], grid.dims[2], rgba ? GL_RGBA : GL_RGB, GL_FLOAT,
+                        values.data());
     glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
@@ -32,15 +33,18 @@ void GridPass::clear() {
     for (GpuGrid& g : grids_) {
         glDeleteTextures(1, &g.source);
         glDeleteTextures(1, &g.extinction);
+        if (g.refraction) glDeleteTextures(1, &g.refraction);
     }
     grids_.clear();
 }
 
 void GridPass::add(const ScatteringGrid& grid) {
     const size_t n = grid.voxelCount();
-    if (n == 0 || grid.source.size() != 3 * n || grid.extinction.size() != 3 * n)
-        throw Error("scattering grid: " + std::to_string(grid.source.size()) + " source and " +
-                    std::to_string(grid.extinction.size()) + " extinction values for " + std::to_string(n) + " voxels");
+    if (n == 0 || grid.source.size() != 3 * n || grid.extinction.size() != 3 * n ||
+        (!grid.refraction.empty() && grid.refraction.size() != 4 * n))
+        throw Error("scattering grid: " + std::to_string(grid.source.size()) + " source, " +
+                    std::to_string(grid.extinction.size()) + " extinction and " + std::to_string(grid.refraction.size()) +
+                    " refraction values for " + std::to_string(n) + " voxels");
     GLint largest = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
     if (*std::max_element(grid.dims.begin(), grid.dims.end()) > largest)
@@ -50,6 +54,7 @@ void GridPass::add(const ScatteringGrid& grid) {
     GpuGrid g;
     g.source = texture3d(grid, grid.source);
     g.extinction = texture3d(grid, grid.extinction);
+    if (!grid.refraction.empty()) g.refraction = texture3d(grid, grid.refraction, true);
     g.bounds = grid.bounds;
     g.voxel = float(grid.bounds.extent().x / grid.dims[0]);
     grids_.push_back(g);
@@ -70,11 +75,14 @@ void GridPass::draw(FrameContext& frame) {
     glUniform1i(program_.uniform("raySegments"), GLint(gpu::kUnitRaySegments));
     glUniform1i(program_.uniform("source"), GLint(gpu::kUnitGridSource));
     glUniform1i(program_.uniform("extinction"), GLint(gpu::kUnitGridExtinction));
+    glUniform1i(program_.uniform("refraction"), GLint(gpu::kUnitGridRefraction));
     glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
     glBindVertexArray(frame.targets.emptyVertexArray());
     for (const GpuGrid& g : grids_) {
         glBindTextureUnit(gpu::kUnitGridSource, g.source);
         glBindTextureUnit(gpu::kUnitGridExtinction, g.extinction);
+        glBindTextureUnit(gpu::kUnitGridRefraction, g.refraction);
+        glUniform1i(program_.uniform("refracting"), g.refraction != 0);
         glUniform3fv(program_.uniform("boundsMin"), 1, glm::value_ptr(glm::vec3(g.bounds.min)));
         glUniform3fv(program_.uniform("boundsMax"), 1, glm::value_ptr(glm::vec3(g.bounds.max)));
         glUniform1f(program_.uniform("voxel"), g.voxel);

@@ -25,6 +25,7 @@ public:
 private:
     struct GpuGrid {
         GLuint source = 0, extinction = 0;  // 3D RGB32F textures, trilinear
+        GLuint refraction = 0;              // RGBA32F (n, grad n), or 0: index-matched
         Bounds3 bounds;
         float voxel = 0;
     };
