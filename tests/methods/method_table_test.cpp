@@ -105,6 +105,16 @@ TEST(MethodTable, AutoFollowsForwardScatteringWithThePathTracerOrMdom) {
     EXPECT_NE(chooseMethod(scene).method, "path");
 }
 
+TEST(MethodTable, AutoTakesThePathTracerForARefractingBoundaryAtAnyAlbedo) {
+    for (double albedo : {0.05, 0.8}) {
+        SceneDesc scene = sceneWith(Rgb(albedo), 512);
+        scene.objects[0].medium.ior = 1.33;
+        const MethodChoice c = chooseMethod(scene);
+        EXPECT_EQ(c.method, "path") << c.reason;
+        EXPECT_NE(c.reason.find("ior 1.33: only the path tracer refracts"), std::string::npos) << c.reason;
+    }
+}
+
 TEST(MethodTable, AutoSaysWhatItChoseAndWhy) {
     SceneDesc scene;
     const ResolvedMethod r = resolveMethod("auto", scene);
