@@ -20,8 +20,8 @@ packages=(
   # OpenCL for the hybrid (hybrid/): headers, the ICD loader and PoCL, which runs
   # the kernels on the CPU; clinfo to see what the loader finds
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks; CGAL's demo meshes for lucent bench accuracy --cgal
+  libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo
   # the plots of lucent bench accuracy
   python3-matplotlib
 )
