@@ -10,6 +10,22 @@
 
 namespace lucent {
 
+namespace {
+
+double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+}  // namespace
+
+double insideShare(const WeightedSample& s, const glm::vec3& p, double sigma) {
+    if (!std::isfinite(s.thickness)) return 1.0;
+    // u: the depth under the nearest boundary, along the line to the image.
+    const glm::vec3 axis = s.position - s.image;
+    const double length = glm::length(axis);
+    if (!(length > 0.0)) return 1.0;
+    const double u = glm::dot(p - 0.5f * (s.position + s.image), axis) / length;
+    return std::max(0.0, normalCdf((double(s.thickness) - u) / sigma) - normalCdf(-u / sigma));
+}
+
 std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& samples, double reachSigmas) {
     const size_t n = samples.size();
     std::vector<float> weights(n, 1.0f);
@@ -35,13 +51,18 @@ std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& sa
     for (size_t i = 0; i < n; ++i) order[fill[flat(cellOf(samples[i].position))]++] = uint32_t(i);
     const glm::ivec3 reach = glm::ivec3(glm::ceil(Vec3(cell) / cellSize));
 
-    // sum_j v_j c_ij with c_ij = int gamma_i (gamma_j + gamma_j*) / int gamma_i, in
-    // closed form: the product of two Gaussians is a Gaussian of variance
-    // s_i^2 s_j^2 / (s_i^2 + s_j^2).
+    // sum_j v_j c_ij with c_ij = int_in k_i k_j / int_in k_i, in closed form: the
+    // product of two Gaussians is a Gaussian of variance s_i^2 s_j^2 / (s_i^2 + s_j^2)
+    // centred between them. Where the region is thick around i, mirror symmetry
+    // turns it into int gamma_i (gamma_j + gamma_j*) / int gamma_i over all space.
     auto overlap = [&](size_t i, const std::vector<double>& v) {
         const WeightedSample& a = samples[i];
         const glm::ivec3 c = cellOf(a.position), lo = glm::max(c - reach, glm::ivec3(0)), hi = glm::min(c + reach, dims - 1);
         const double si2 = double(a.width) * a.width;
+        const bool thin = std::isfinite(a.thickness);
+        // int_in k_i / int gamma_i
+        const double own =
+            thin ? std::max(insideShare(a, a.position, a.width) + insideShare(a, a.image, a.width), 1e-3) : 1.0;
         double sum = 0.0;
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
@@ -54,11 +75,23 @@ std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& sa
                         const double s2 = si2 + sj2;
                         const double reach2 = reachSigmas * reachSigmas * std::max(si2, sj2);
                         const double scale = std::pow(sj2 / s2, 1.5) * v[order[k]];
-                        for (const glm::vec3& centre : {b.position, b.image}) {
-                            const glm::vec3 d = a.position - centre;
-                            const double r2 = glm::dot(d, d);
-                            if (r2 <= reach2) sum += scale * std::exp(-0.5 * r2 / s2);
+                        if (!thin) {
+                            for (const glm::vec3& centre : {b.position, b.image}) {
+                                const glm::vec3 d = a.position - centre;
+                                const double r2 = glm::dot(d, d);
+                                if (r2 <= reach2) sum += scale * std::exp(-0.5 * r2 / s2);
+                            }
+                            continue;
                         }
+                        const double product = std::sqrt(si2 * sj2 / s2);
+                        for (const glm::vec3& mine : {a.position, a.image})
+                            for (const glm::vec3& centre : {b.position, b.image}) {
+                                const glm::vec3 d = mine - centre;
+                                const double r2 = glm::dot(d, d);
+                                if (r2 > reach2) continue;
+                                const glm::vec3 middle = glm::vec3((sj2 * Vec3(mine) + si2 * Vec3(centre)) / s2);
+                                sum += scale * std::exp(-0.5 * r2 / s2) * insideShare(a, middle, product) / own;
+                            }
                     }
                 }
         return sum;  // the sample itself keeps it positive
@@ -67,7 +100,7 @@ std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& sa
     // (Solving the system exactly, by multiplicative sweeps, measured no better.)
     const std::vector<double> ones(n, 1.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) weights[i] = float(1.0 / overlap(i, ones));
+        for (size_t i = r.begin(); i < r.end(); ++i) weights[i] = float(1.0 / std::max(overlap(i, ones), 1e-30));
     });
     return weights;
 }

@@ -10,10 +10,17 @@
 //   at the boundary as deep inside. The runtime clips both to the region.
 // - Galerkin normalisation: asking the integral of k_i (sum_j w_j k_j) over the
 //   region to equal that of k_i, k = gamma + its image and w locally constant,
-//   gives by the mirror symmetry
-//     w_i = int gamma_i / sum_j int gamma_i (gamma_j + gamma_j*)   (whole space),
-//   the local average of the sum, in closed form for Gaussians. Gaussians of
-//   different regions (density slabs) do not overlap at all.
+//   gives
+//     w_i = int_in k_i / sum_j int_in k_i k_j,
+//   the local average of the sum over the region. Near one flat boundary, by the
+//   mirror symmetry, that is int gamma_i / sum_j int gamma_i (gamma_j + gamma_j*)
+//   over the whole space, in closed form for Gaussians. Where the region is
+//   thinner than a few Gaussian widths (a plate, a tube) the far side clips them
+//   too: the region is then taken, around each sample, as the slab between its
+//   nearest boundary and the boundary straight across, and the products of
+//   Gaussians (Gaussians again) are integrated over that slab in closed form.
+//   Gaussians of different regions (density slabs) do not overlap at all.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -26,7 +33,14 @@ struct WeightedSample {
     glm::vec3 image;  // mirrored across the nearest boundary of its region
     float width;      // Gaussian standard deviation
     uint32_t region;  // samples of different regions never overlap
+    // The region across the sample, along the line from its nearest boundary:
+    // infinity where it is far thicker than the Gaussians reach.
+    float thickness = HUGE_VALF;
 };
+
+// The share of the region's slab model around s that a Gaussian of width sigma
+// centred at p holds (1 where the region is thick).
+double insideShare(const WeightedSample& s, const glm::vec3& p, double sigma);
 
 // reachSigmas: neighbours farther than reachSigmas * width are ignored.
 std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& samples, double reachSigmas = 4.0);
