@@ -115,10 +115,13 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
 
 SampleSet readSampleFile(const std::filesystem::path& file) {
     const std::string name = file.string();
-    regularFileSize(file, "sample file");
+    const uint64_t size = regularFileSize(file, "sample file");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw Error(name, "cannot open sample file");
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // One read of the size checked above (a byte iterator took 0.1 s on a 34 MB file).
+    std::vector<char> bytes(size);
+    in.read(bytes.data(), std::streamsize(size));
+    if (in.gcount() != std::streamsize(size)) throw Error(name, "sample file changed size while being read");
     return parseSampleFile(bytes, name);
 }
 

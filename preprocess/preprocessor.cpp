@@ -132,7 +132,7 @@ PreprocessSettings qualityPreset(const std::string& name) {
         s.samples = 120000;
         s.heuristicDirections = 128;
         s.projectionDirections = 512;
-        s.shOrder = 6;
+        s.shOrder = 8;
     } else {
         throw Error("unknown quality '" + name + "' (expected draft, default or high)");
     }
