@@ -23,6 +23,7 @@
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
+#include "reference/refraction.h"
 
 namespace lucent {
 
@@ -89,6 +90,16 @@ private:
     Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
                           int channel) const;
     Exit refractedWalk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
+    // What a path at x going along w meets first in a refracting scene: a
+    // collision in the object it is inside (collision), else the next boundary
+    // (boundary, with the object it belongs to), else nothing or a blocker.
+    struct Ahead {
+        std::optional<double> collision;
+        std::optional<BoundaryHit> boundary;
+        const VolumeObject* object = nullptr;
+        bool blocked = false;  // a blocker comes first: the path ends
+    };
+    Ahead ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, Rng& rng, int channel) const;
     // The light gathered at a collision in a refracting scene: through the boundary
     // for a refracting object, along straight lines for an index-matched one.
     Rgb gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;

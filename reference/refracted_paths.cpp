@@ -23,28 +23,11 @@ namespace {
 // total internal reflection in a clear box would never end).
 constexpr int kMaxBoundaryEvents = 256;
 
-struct Next {
-    std::optional<BoundaryHit> hit;
-    const VolumeObject* object = nullptr;
-};
-
-// The next boundary along x + t w: the inside object's, or the nearest of all from outside.
-Next nextBoundary(const std::vector<VolumeObject>& objects, const VolumeObject* inside, const Vec3& x, const Vec3& w) {
-    Next next;
-    if (inside) return Next{nextBoundaryHit(*inside, x, w), inside};
-    for (const VolumeObject& o : objects) {
-        const std::optional<BoundaryHit> h = nextBoundaryHit(o, x, w);
-        if (h && (!next.hit || h->t < next.hit->t)) next = Next{h, &o};
-    }
-    return next;
-}
-
 // Reflects or refracts w at the boundary by Fresnel's odds and moves the path
 // to the side it goes on; returns what the crossing multiplies the radiance
 // carried back along the path by.
-double cross(const Next& next, Vec3& w, const VolumeObject*& inside, Rng& rng) {
-    const BoundaryHit& hit = *next.hit;
-    const double n = next.object->desc().medium.ior;
+double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const VolumeObject*& inside, Rng& rng) {
+    const double n = object.desc().medium.ior;
     const Vec3 facing = hit.entering ? hit.normal : -hit.normal;
     const double eta = hit.entering ? 1.0 / n : n;
     const double cosine = -glm::dot(w, facing);
@@ -56,7 +39,7 @@ double cross(const Next& next, Vec3& w, const VolumeObject*& inside, Rng& rng) {
         return 1.0;
     }
     w = *refracted;
-    inside = hit.entering ? next.object : nullptr;
+    inside = hit.entering ? &object : nullptr;
     return cosine > 0.0 ? (hit.entering ? 1.0 / (n * n) : n * n) : 1.0;
 }
 
@@ -74,6 +57,24 @@ Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x,
     return sum;
 }
 
+PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, Rng& rng,
+                                    int channel) const {
+    Ahead a;
+    if (inside) {
+        a.boundary = nextBoundaryHit(*inside, x, w);
+        a.object = inside;
+    } else {
+        for (const VolumeObject& o : objects_) {
+            const std::optional<BoundaryHit> h = nextBoundaryHit(o, x, w);
+            if (h && (!a.boundary || h->t < a.boundary->t)) a.boundary = h, a.object = &o;
+        }
+    }
+    const double tBlocker = blockerDistance(x, w), tBoundary = a.boundary ? a.boundary->t : kInfinity;
+    if (inside) a.collision = sampleCollisionIn(*inside, x, w, Interval{0.0, std::min(tBoundary, tBlocker)}, rng, channel);
+    a.blocked = tBlocker < tBoundary;
+    return a;
+}
+
 Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
                                   int channel) const {
     Rgb total = surfaceTerm(origin, dir, blockerDistance(origin, dir), settings, channel);
@@ -82,30 +83,25 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng,
     Rgb throughput(1.0);
     int collisions = 0;
     for (int events = 0; events < kMaxBoundaryEvents;) {
-        const double tBlocker = blockerDistance(x, w);
-        const Next next = nextBoundary(objects_, inside, x, w);
-        const double tBoundary = next.hit ? next.hit->t : kInfinity;
-        if (inside) {
-            const Interval span{0.0, std::min(tBoundary, tBlocker)};
-            if (const std::optional<double> t = sampleCollisionIn(*inside, x, w, span, rng, channel)) {
-                x += *t * w;
-                // The collision estimator, as in radiance(): the albedo is the collision's weight.
-                throughput *= masked(inside->desc().medium.albedo, channel);
-                total += throughput * masked(gatherLightsRefracted(*inside, x, w), channel);
-                if (++collisions >= settings.maxScatter) break;
-                if (collisions > 3) {
-                    const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
-                    if (rng.uniform() >= keep) break;
-                    throughput /= keep;
-                }
-                const double xi1 = rng.uniform(), xi2 = rng.uniform();
-                w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
-                continue;
+        const Ahead a = ahead(inside, x, w, rng, channel);
+        if (a.collision) {
+            x += *a.collision * w;
+            // The collision estimator, as in radiance(): the albedo is the collision's weight.
+            throughput *= masked(inside->desc().medium.albedo, channel);
+            total += throughput * masked(gatherLightsRefracted(*inside, x, w), channel);
+            if (++collisions >= settings.maxScatter) break;
+            if (collisions > 3) {
+                const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
+                if (rng.uniform() >= keep) break;
+                throughput /= keep;
             }
+            const double xi1 = rng.uniform(), xi2 = rng.uniform();
+            w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+            continue;
         }
-        if (!next.hit || tBlocker <= tBoundary) break;  // escapes, or a blocker absorbs it
-        x = next.hit->point;
-        throughput *= cross(next, w, inside, rng);
+        if (!a.boundary || a.blocked) break;  // escapes, or a blocker absorbs it
+        x = a.boundary->point;
+        throughput *= cross(*a.boundary, *a.object, w, inside, rng);
         ++events;
     }
     return total;
@@ -117,30 +113,25 @@ PathTracer::Exit PathTracer::refractedWalk(const Vec3& origin, const Vec3& dir, 
     const VolumeObject* inside = containing(origin);
     Vec3 x = origin, w = dir;
     for (int events = 0; events < kMaxBoundaryEvents;) {
-        const double tBlocker = blockerDistance(x, w);
-        const Next next = nextBoundary(objects_, inside, x, w);
-        const double tBoundary = next.hit ? next.hit->t : kInfinity;
-        if (inside) {
-            const Interval span{0.0, std::min(tBoundary, tBlocker)};
-            if (const std::optional<double> t = sampleCollisionIn(*inside, x, w, span, rng, channel)) {
-                if (exit.collisions == maxScatter) return exit;
-                x += *t * w;
-                exit.weight *= inside->desc().medium.albedo;
-                ++exit.collisions;
-                const double xi1 = rng.uniform(), xi2 = rng.uniform();
-                w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
-                continue;
-            }
+        const Ahead a = ahead(inside, x, w, rng, channel);
+        if (a.collision) {
+            if (exit.collisions == maxScatter) return exit;
+            x += *a.collision * w;
+            exit.weight *= inside->desc().medium.albedo;
+            ++exit.collisions;
+            const double xi1 = rng.uniform(), xi2 = rng.uniform();
+            w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
+            continue;
         }
-        if (tBlocker < tBoundary) return exit;  // absorbed by a blocker
-        if (!next.hit) {
+        if (a.blocked) return exit;  // absorbed by a blocker
+        if (!a.boundary) {
             exit.escaped = true;
             exit.position = x;
             exit.direction = w;
             return exit;
         }
-        x = next.hit->point;
-        cross(next, w, inside, rng);
+        x = a.boundary->point;
+        cross(*a.boundary, *a.object, w, inside, rng);
         ++events;
     }
     return exit;  // trapped: counted as not escaped

@@ -21,6 +21,7 @@
 
 #include "core/camera_rays.h"
 #include "reference/reference_renderer.h"
+#include "tests/reference/spot_radiance.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -62,19 +63,10 @@ void expectVanDeHulstTable12(double mu0, bool reflection, double expected) {
     scene.camera.position = spot + 10.0 * Vec3(0.0, sinView, reflection ? 0.5 : -0.5);
     scene.camera.target = spot;
     scene.camera.up = Vec3(1, 0, 0);
-    scene.camera.fovYDegrees = 0.01;
-    scene.camera.width = scene.camera.height = 2;
-    std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
     PathSettings settings;
     settings.samplesPerPixel = 80000;
-    const PathTracer::Result r = PathTracer(scene, objects).render(settings);
-    double mean = 0.0, variance = 0.0;
-    for (size_t i = 0; i < 4; ++i) {
-        mean += r.mean.pixels[i].g / 4.0;
-        variance += std::pow(r.standardError.pixels[i].g / 4.0, 2);
-    }
-    expectWithin(mean, std::sqrt(variance), mu0 * expected, reflection ? "mu0 R" : "mu0 T");
+    const test::SpotRadiance radiance = test::spotRadiance(scene, settings);
+    expectWithin(radiance.mean, radiance.standardError, mu0 * expected, reflection ? "mu0 R" : "mu0 T");
 }
 
 TEST(PathTracer, IsotropicSlabReflectionMatchesVanDeHulstTable12) {

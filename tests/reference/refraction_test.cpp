@@ -20,6 +20,7 @@
 #include <cstdio>
 
 #include "reference/path_tracer.h"
+#include "tests/reference/spot_radiance.h"
 #include "tests/support/test_support.h"
 
 namespace lucent {
@@ -191,19 +192,11 @@ TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
     scene.camera.position = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
     scene.camera.target = Vec3(0.0);
     scene.camera.up = Vec3(1, 0, 0);
-    scene.camera.fovYDegrees = 0.01;
-    scene.camera.width = scene.camera.height = 2;
-    std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
     PathSettings settings;
     settings.samplesPerPixel = 20000;
     settings.maxScatter = 1;
-    const PathTracer::Result result = PathTracer(scene, objects).render(settings);
-    double mean = 0.0, variance = 0.0;
-    for (size_t i = 0; i < 4; ++i) {
-        mean += result.mean.pixels[i].g / 4.0;
-        variance += std::pow(result.standardError.pixels[i].g / 4.0, 2);
-    }
+    const test::SpotRadiance spot = test::spotRadiance(scene, settings);
+    const double mean = spot.mean;
     // Inside: the beam along t_l, the view ray along t_v (Snell), the phase at their angle.
     const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
     const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
@@ -212,7 +205,7 @@ TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
     const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
     const double radianceInside = albedo * phase * irradianceInside / (1.0 + cosView / cosLight);
     const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * radianceInside;
-    const double standardError = std::sqrt(variance);
+    const double standardError = spot.standardError;
     std::printf("radiance %.6g +- %.2g (expected %.6g, %+.2f%%)\n", mean, standardError, expected,
                 100.0 * (mean / expected - 1.0));
     EXPECT_NEAR(mean, expected, std::max(3.0 * standardError, 0.005 * expected));
