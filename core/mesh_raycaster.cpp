@@ -170,6 +170,38 @@ double MeshRaycaster::firstHit(const Vec3& origin, const Vec3& dir) const {
     return cs.empty() ? kInfinity : cs.front().t;
 }
 
+std::optional<Crossing> MeshRaycaster::firstCrossing(const Vec3& origin, const Vec3& dir, double tMin) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);  // no filter: Embree keeps the nearest hit
+    RTCRayHit query{};
+    const Vec3 o = origin - origin_;
+    query.ray.org_x = float(o.x);
+    query.ray.org_y = float(o.y);
+    query.ray.org_z = float(o.z);
+    query.ray.dir_x = float(dir.x);
+    query.ray.dir_y = float(dir.y);
+    query.ray.dir_z = float(dir.z);
+    query.ray.tnear = float(tMin);
+    query.ray.tfar = HUGE_VALF;
+    query.ray.mask = ~0u;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tree_->scene, &context, &query);
+    if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    const uint32_t f = query.hit.primID;
+    const Vec3& n = tree_->normal[f];
+    const double dn = glm::dot(dir, n);
+    const double t = dn != 0.0 ? glm::dot(tree_->v0[f] - origin, n) / dn : 0.0;
+    if (!(t > tMin)) {
+        // Single precision let through a hit at or before tMin: ask for all of them.
+        thread_local std::vector<Crossing> cs;
+        crossings(origin, dir, cs);
+        for (const Crossing& c : cs)
+            if (c.t > tMin) return c;
+        return std::nullopt;
+    }
+    return Crossing{t, dn > 0.0, f};
+}
+
 bool MeshRaycaster::contains(const Vec3& p) const {
     if (!bounds_.contains(p)) return false;
     // Majority over three unrelated directions guards against a ray that grazes an edge.

@@ -39,6 +39,11 @@ public:
 
     // Distance to the first crossing, or infinity.
     double firstHit(const Vec3& origin, const Vec3& dir) const;
+    // The first crossing beyond tMin: one nearest-hit traversal, where crossings()
+    // collects every hit along the ray (the refracting path tracer's many short
+    // queries); falls back to crossings() when the nearest hit is not beyond tMin
+    // in double precision.
+    std::optional<Crossing> firstCrossing(const Vec3& origin, const Vec3& dir, double tMin) const;
 
     bool contains(const Vec3& p) const;
     double distanceToSurface(const Vec3& p) const;

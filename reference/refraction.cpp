@@ -73,18 +73,15 @@ std::optional<Vec3> refractedDirection(const Vec3& w, const Vec3& facing, double
 
 std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& origin, const Vec3& dir) {
     const double offset = kOffset * o.boundary().bounds().diagonal();
-    thread_local std::vector<Crossing> crossings;
-    o.boundary().crossings(origin, dir, crossings);
-    for (const Crossing& c : crossings) {
-        if (c.t <= offset) continue;
-        const Vec3 p = origin + c.t * dir;
-        const auto& tri = o.mesh().triangles[c.face];
+    if (const std::optional<Crossing> c = o.boundary().firstCrossing(origin, dir, offset)) {
+        const Vec3 p = origin + c->t * dir;
+        const auto& tri = o.mesh().triangles[c->face];
         const Vec3& a = o.mesh().positions[tri[0]];
         const Vec3 face = glm::cross(o.mesh().positions[tri[1]] - a, o.mesh().positions[tri[2]] - a);
-        Vec3 n = o.shadingNormal(c.face, p);
+        Vec3 n = o.shadingNormal(c->face, p);
         if (glm::dot(n, face) < 0.0) n = -n;
         // Entering or leaving by the face's own orientation, which the closed mesh makes consistent.
-        return BoundaryHit{c.t, p, n, glm::dot(dir, face) < 0.0};
+        return BoundaryHit{c->t, p, n, glm::dot(dir, face) < 0.0};
     }
     return std::nullopt;
 }

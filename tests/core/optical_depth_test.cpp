@@ -2,6 +2,8 @@
 // and blockers that stop light. Expected values are closed-form chord lengths.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/volume_object.h"
@@ -47,6 +49,37 @@ TEST(OpticalDepth, ConcaveTorusThroughVertices) {
     EXPECT_NEAR(torus.densityPath(Vec3(-0.5, 0, 0), Vec3(1, 0, 0)), 0.18 + 0.36, 1e-6);  // OpenMesh reads coordinates as float
     EXPECT_NEAR(torus.densityPath(Vec3(-0.9, 0, 0), Vec3(1, 0, 0)), 0.36 + 0.36, 1e-6);
     EXPECT_DOUBLE_EQ(torus.densityPath(Vec3(0, 0, 0), Vec3(0, 1, 0)), 0.0);
+}
+
+TEST(OpticalDepth, FirstCrossingIsTheFirstOfAllCrossingsBeyondItsStart) {
+    // The one-traversal query against the collecting one, on the concave torus,
+    // from points inside, outside and on the surface itself (where single
+    // precision may report the face the ray starts on).
+    std::vector<std::string> warnings;
+    const VolumeObject torus(test::simpleObject(test::modelsDir() / "torus.obj", 1.0), warnings);
+    const MeshRaycaster& caster = torus.boundary();
+    Rng rng(3, 4);
+    std::vector<Crossing> all;
+    int onSurface = 0;
+    for (int i = 0; i < 2000; ++i) {
+        Vec3 x = 1.6 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const Vec3 w = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const double tMin = 1e-7;
+        if (i % 2 == 1) {  // start on the surface: where a ray from x meets it
+            caster.crossings(x, w, all);
+            if (all.empty()) continue;
+            x += all.front().t * w;
+            ++onSurface;
+        }
+        caster.crossings(x, w, all);
+        const auto expected = std::find_if(all.begin(), all.end(), [&](const Crossing& c) { return c.t > tMin; });
+        const std::optional<Crossing> first = caster.firstCrossing(x, w, tMin);
+        ASSERT_EQ(first.has_value(), expected != all.end()) << i;
+        if (!first) continue;
+        EXPECT_NEAR(first->t, expected->t, 1e-9) << i;
+        EXPECT_EQ(first->exits, expected->exits) << i;
+    }
+    EXPECT_GT(onSurface, 150);  // 227 of the 1000 odd rays meet the torus
 }
 
 TEST(OpticalDepth, SphereChordsMatchTheCircle) {
