@@ -266,7 +266,6 @@ std::vector<DiskSample> fitPoissonDisks(const std::string& name, RadiusSurface& 
     return disks;
 }
 
-// What describeSamples leaves for the weights and the projection.
 // Beyond this many Gaussian widths behind a sample, the far side of its region
 // clips nothing the weights see (neighbours within 4 widths, their products
 // narrower still).
@@ -296,6 +295,7 @@ double regionThickness(const VolumeObject& object, const std::optional<DensitySl
     return behind > reach ? kInfinity : depth + behind;
 }
 
+// What describeSamples leaves for the weights and the projection.
 struct DescribedSamples {
     std::vector<Vec3> positions;  // in double precision, as the projection casts its rays from them
     std::vector<WeightedSample> weighted;
@@ -377,11 +377,7 @@ void applyWeights(const VolumeObject& object, const std::vector<WeightedSample>&
         // one Gaussian near a single boundary, less where the far side clips them.
         double held = 0.0;
         for (size_t i = 0; i < weights.size(); ++i) {
-            const WeightedSample& w = weighted[i];
-            const double inside = std::isfinite(w.thickness)
-                                      ? insideShare(w, w.position, w.width) + insideShare(w, w.image, w.width)
-                                      : 1.0;
-            held += weights[i] * inside * std::pow(2.0 * kPi * double(set.widths[i]) * set.widths[i], 1.5);
+            held += weights[i] * heldInside(weighted[i]) * std::pow(2.0 * kPi * double(set.widths[i]) * set.widths[i], 1.5);
         }
         if (sampledVolume > 0.0 && held > 0.0) scale = sampledVolume / held;
     }

@@ -26,6 +26,11 @@ double insideShare(const WeightedSample& s, const glm::vec3& p, double sigma) {
     return std::max(0.0, normalCdf((double(s.thickness) - u) / sigma) - normalCdf(-u / sigma));
 }
 
+double heldInside(const WeightedSample& s) {
+    if (!std::isfinite(s.thickness)) return 1.0;
+    return insideShare(s, s.position, s.width) + insideShare(s, s.image, s.width);
+}
+
 std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& samples, double reachSigmas) {
     const size_t n = samples.size();
     std::vector<float> weights(n, 1.0f);
@@ -60,9 +65,7 @@ std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& sa
         const glm::ivec3 c = cellOf(a.position), lo = glm::max(c - reach, glm::ivec3(0)), hi = glm::min(c + reach, dims - 1);
         const double si2 = double(a.width) * a.width;
         const bool thin = std::isfinite(a.thickness);
-        // int_in k_i / int gamma_i
-        const double own =
-            thin ? std::max(insideShare(a, a.position, a.width) + insideShare(a, a.image, a.width), 1e-3) : 1.0;
+        const double own = std::max(heldInside(a), 1e-3);  // int_in k_i / int gamma_i
         double sum = 0.0;
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)

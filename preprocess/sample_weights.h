@@ -41,6 +41,10 @@ struct WeightedSample {
 // The share of the region's slab model around s that a Gaussian of width sigma
 // centred at p holds (1 where the region is thick).
 double insideShare(const WeightedSample& s, const glm::vec3& p, double sigma);
+// What s's Gaussian and its image hold inside the region, over what the Gaussian
+// alone holds in all space: 1 near a single flat boundary (the image gives back
+// what the boundary cuts off), less where the far side clips them too.
+double heldInside(const WeightedSample& s);
 
 // reachSigmas: neighbours farther than reachSigmas * width are ignored.
 std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& samples, double reachSigmas = 4.0);
