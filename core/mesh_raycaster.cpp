@@ -50,6 +50,23 @@ void collectHit(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// An Embree ray from origin (relative to the box centre Embree's vertices are
+// given in) along dir, from tnear on.
+RTCRayHit rayQuery(const Vec3& origin, const Vec3& dir, double tnear) {
+    RTCRayHit query{};
+    query.ray.org_x = float(origin.x);
+    query.ray.org_y = float(origin.y);
+    query.ray.org_z = float(origin.z);
+    query.ray.dir_x = float(dir.x);
+    query.ray.dir_y = float(dir.y);
+    query.ray.dir_z = float(dir.z);
+    query.ray.tnear = float(tnear);
+    query.ray.tfar = HUGE_VALF;
+    query.ray.mask = ~0u;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    return query;
+}
+
 }  // namespace
 
 struct MeshRaycaster::Tree {
@@ -106,18 +123,7 @@ void MeshRaycaster::crossings(const Vec3& origin, const Vec3& dir, std::vector<C
     rtcInitIntersectContext(&collecting.context);
     collecting.context.filter = collectHit;
     collecting.faces = &faces;
-    RTCRayHit query{};
-    const Vec3 o = origin - origin_;
-    query.ray.org_x = float(o.x);
-    query.ray.org_y = float(o.y);
-    query.ray.org_z = float(o.z);
-    query.ray.dir_x = float(dir.x);
-    query.ray.dir_y = float(dir.y);
-    query.ray.dir_z = float(dir.z);
-    query.ray.tnear = 0.0f;
-    query.ray.tfar = HUGE_VALF;
-    query.ray.mask = ~0u;
-    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit query = rayQuery(origin - origin_, dir, 0.0);
     rtcIntersect1(tree_->scene, &collecting.context, &query);
     for (uint32_t f : faces) {
         const Vec3& n = tree_->normal[f];
@@ -173,18 +179,7 @@ double MeshRaycaster::firstHit(const Vec3& origin, const Vec3& dir) const {
 std::optional<Crossing> MeshRaycaster::firstCrossing(const Vec3& origin, const Vec3& dir, double tMin) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);  // no filter: Embree keeps the nearest hit
-    RTCRayHit query{};
-    const Vec3 o = origin - origin_;
-    query.ray.org_x = float(o.x);
-    query.ray.org_y = float(o.y);
-    query.ray.org_z = float(o.z);
-    query.ray.dir_x = float(dir.x);
-    query.ray.dir_y = float(dir.y);
-    query.ray.dir_z = float(dir.z);
-    query.ray.tnear = float(tMin);
-    query.ray.tfar = HUGE_VALF;
-    query.ray.mask = ~0u;
-    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit query = rayQuery(origin - origin_, dir, tMin);
     rtcIntersect1(tree_->scene, &context, &query);
     if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const uint32_t f = query.hit.primID;
