@@ -46,9 +46,12 @@ Command addTransportCommand(CLI::App& app) {
             writeVdbGrid(*volume, "flux", p.cells, p.domain.min, p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]),
                          r.cellFlux);
         out.commit();
-        std::fprintf(stderr, "lucent: transport: %d directions, %d moments, %d iterations%s in %.2f s on '%s'\n",
-                     p.directions, p.bands * p.bands, r.iterations, r.converged ? "" : " (not converged)", r.seconds,
-                     r.device.c_str());
+        if (!r.uncollidedWhy.empty()) std::fprintf(stderr, "lucent: transport: %s\n", r.uncollidedWhy.c_str());
+        std::fprintf(stderr,
+                     "lucent: transport: %d directions, %d moments, uncollided flux %s, %d iterations%s in %.2f s on "
+                     "'%s'\n",
+                     p.directions, p.bands * p.bands, r.uncollidedMarched ? "marched" : "swept", r.iterations,
+                     r.converged ? "" : " (not converged)", r.seconds, r.device.c_str());
 #else
         throw Error(*problem + ": lucent transport needs OpenCL, and this build has none (install the OpenCL "
                                "packages with scripts/install-deps.sh and rebuild)");

@@ -87,6 +87,14 @@ TransportProblem parseTransportProblemText(const std::string& text, const std::f
         if (s.has("bands")) p.bands = s.child("bands").integer(1, 6);
         if (s.has("iterations")) p.maxIterations = s.child("iterations").integer(1, 100000);
         if (s.has("tolerance")) p.tolerance = s.child("tolerance").number(1e-9, 1.0);
+        if (s.has("uncollided")) {
+            Node u = s.child("uncollided");
+            const std::string how = u.string();
+            if (how == "auto") p.uncollided = TransportProblem::Uncollided::Auto;
+            else if (how == "marched") p.uncollided = TransportProblem::Uncollided::Marched;
+            else if (how == "swept") p.uncollided = TransportProblem::Uncollided::Swept;
+            else u.fail("must be \"auto\", \"marched\" or \"swept\"");
+        }
         s.rejectUnknownKeys();
     }
     root.rejectUnknownKeys();

@@ -31,6 +31,11 @@ struct TransportProblem {
     int bands = 4;  // spherical-harmonic bands of the scattering source (M = bands^2 moments)
     int maxIterations = 500;
     double tolerance = 1e-5;
+    // How the uncollided flux of the sources is found (docs/transport.md, Ray
+    // effects): integrated cell to cell (marched), or swept along the N
+    // directions with the rest; auto marches wherever it can.
+    enum class Uncollided { Auto, Marched, Swept };
+    Uncollided uncollided = Uncollided::Auto;
 };
 
 // Throws Error("FILE: /path: problem") for anything malformed or out of range.

@@ -1,13 +1,43 @@
 #include "hybrid/transport.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/error.h"
 #include "hybrid/internal/dom_solver.h"
+#include "hybrid/internal/uncollided_flux.h"
 #include "hybrid/ordinates.h"
 
 namespace lucent::hybrid {
+
+namespace {
+
+// The far field's traversal steps integrated in about 10 s on this project's
+// 2-core machine (docs/transport.md: 9e9 took 38 s).
+constexpr double kMarchBudget = 2.5e9;
+// Cells longer than this many times the shortest would need too many near kernels.
+constexpr double kMostAspect = 4.0;
+
+// Why the uncollided flux cannot be integrated cell to cell here, or "" when it can.
+std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid, size_t sourceCells) {
+    if (sourceCells == 0) return "";
+    for (int f = 0; f < 6; ++f)
+        if (p.reflective[f])
+            return "a reflective face would need the sources' mirror images; the uncollided flux is swept";
+    const double longest = std::max({grid.edges.x, grid.edges.y, grid.edges.z}),
+                 shortest = std::min({grid.edges.x, grid.edges.y, grid.edges.z});
+    if (longest > kMostAspect * shortest)
+        return "cells more than " + std::to_string(int(kMostAspect)) +
+               " times longer on one axis than on another; the uncollided flux is swept";
+    const double work = uncollidedFluxWork(grid, sourceCells);
+    if (work > kMarchBudget)
+        return std::to_string(sourceCells) + " source cells in " + std::to_string(grid.count()) +
+               " cells are too many to integrate cell to cell in about 10 s; the uncollided flux is swept";
+    return "";
+}
+
+}  // namespace
 
 TransportResult solveTransport(const TransportProblem& p) {
     const auto start = std::chrono::steady_clock::now();
@@ -26,6 +56,7 @@ TransportResult solveTransport(const TransportProblem& p) {
     grid.phase.assign(count, glm::vec4(0.0f));
     const int moments = p.bands * p.bands;
     std::vector<glm::vec4> source(count * moments, glm::vec4(0.0f));
+    std::vector<double> density(count, 0.0);
     // Cells belong to the last region holding their centre; the rest are vacuum.
     for (int k = 0; k < p.cells[2]; ++k)
         for (int j = 0; j < p.cells[1]; ++j)
@@ -42,13 +73,27 @@ TransportResult solveTransport(const TransportProblem& p) {
                 grid.phase[v] = glm::vec4(float(in->g), 0.0f, 0.0f, 0.0f);
                 // An isotropic emission q / (4 pi) per unit length: its zero moment is q / sqrt(4 pi).
                 source[v * moments] = glm::vec4(glm::vec3(float(in->source / std::sqrt(4.0 * kPi))), 0.0f);
+                density[v] = in->source;
             }
+    TransportResult r;
+    const size_t sourceCells = size_t(std::count_if(density.begin(), density.end(), [](double q) { return q > 0.0; }));
+    const std::string whyNot = whyNotMarched(p, grid, sourceCells);
+    if (p.uncollided == TransportProblem::Uncollided::Marched && !whyNot.empty())
+        throw Error(p.file.string() + ": /solver/uncollided: cannot be \"marched\": " +
+                    whyNot.substr(0, whyNot.find(';')));
+    r.uncollidedMarched = p.uncollided != TransportProblem::Uncollided::Swept && whyNot.empty();
+    if (p.uncollided == TransportProblem::Uncollided::Auto) r.uncollidedWhy = whyNot;
     try {
         DomSolver solver(device, grid, p.directions, p.bands, p.reflective);
-        solver.setSource(device.marchQueue, source);
+        if (r.uncollidedMarched) {
+            // The first-collision source: generation zero integrated, the sweeps carry the rest.
+            source = uncollidedFlux(grid, density, p.bands);
+            solver.setUncollidedFlux(device.marchQueue, source);
+        } else {
+            solver.setSource(device.marchQueue, source);
+        }
         const DomSolver::Run run = solver.run(device.marchQueue, p.tolerance, p.maxIterations);
         const std::vector<glm::vec4> flux = solver.totalFlux(device.marchQueue);
-        TransportResult r;
         r.iterations = run.iterations;
         r.converged = run.converged;
         r.device = device.name();

@@ -16,6 +16,8 @@ struct TransportResult {
     bool converged = false;
     double seconds = 0;
     std::string device;
+    bool uncollidedMarched = false;  // the sources' uncollided flux integrated cell to cell, not swept
+    std::string uncollidedWhy;       // why it was swept when auto could not march it
 };
 
 TransportResult solveTransport(const TransportProblem& problem);

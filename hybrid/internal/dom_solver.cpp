@@ -115,6 +115,22 @@ void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>&
     queue.enqueueWriteBuffer(source_, CL_TRUE, 0, source.size() * sizeof(glm::vec4), source.data());
 }
 
+void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
+    if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
+    queue.enqueueWriteBuffer(flux_, CL_TRUE, 0, flux.size() * sizeof(glm::vec4), flux.data());
+    scatter_.setArg(0, flux_);
+    scatter_.setArg(1, total_);
+    queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
+    std::swap(flux_, lastFlux_);
+    queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
+    Rgb power(0.0);  // generation zero's, as iterate() measures each generation
+    for (size_t v = 0; v < grid_.count(); ++v)
+        for (int c = 0; c < 3; ++c) power[c] += flux[v * moments_][c];
+    total_power_ += power;
+    previous_power_ = power;
+    queue.finish();
+}
+
 Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     const auto& d = grid_.dims;
     sweep_.setArg(2, flux_);

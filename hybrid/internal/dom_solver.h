@@ -46,6 +46,11 @@ public:
 
     // The first generation's radiance source, [voxel][M] moments (rgb) per unit length.
     void setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source);
+    // Instead of a source: the uncollided flux moments, [voxel][M] (rgb),
+    // computed outside the sweeps (the first-collision source method). They
+    // join the total as generation zero and scatter into the first source, so
+    // that the sweeps carry only light that has collided.
+    void setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux);
     // One iteration: eight octant sweeps of the current source, the generation's
     // flux added to the total and scattered into the next source. Returns the
     // generation's summed zero moments per channel (how much light it carried).

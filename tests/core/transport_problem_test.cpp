@@ -17,7 +17,7 @@ TEST(TransportProblem, ReadsEveryKeyWithItsDefaults) {
     const TransportProblem p = parseTransportProblemText(
         problem(R"({"min": [0, 0, 0], "max": [2, 1, 1], "sigma_t": 2, "sigma_s": 1.5, "g": 0.3, "source": 4})",
                 R"(, "boundary": {"x-": "reflective", "z+": "vacuum"}, "solver": {"directions": 120, "bands": 2,
-                   "iterations": 7, "tolerance": 0.01})"),
+                   "iterations": 7, "tolerance": 0.01, "uncollided": "swept"})"),
         "p.json");
     EXPECT_EQ(p.cells, (std::array<int, 3>{4, 2, 2}));
     EXPECT_EQ(p.reflective, (std::array<bool, 6>{true, false, false, false, false, false}));
@@ -30,10 +30,12 @@ TEST(TransportProblem, ReadsEveryKeyWithItsDefaults) {
     EXPECT_EQ(p.bands, 2);
     EXPECT_EQ(p.maxIterations, 7);
     EXPECT_EQ(p.tolerance, 0.01);
+    EXPECT_EQ(p.uncollided, TransportProblem::Uncollided::Swept);
     const TransportProblem d = parseTransportProblemText(problem(R"({"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1})"), "d.json");
     EXPECT_EQ(d.regions[0].sigmaS, 0.0);
     EXPECT_EQ(d.regions[0].source, 0.0);
     EXPECT_EQ(d.reflective, (std::array<bool, 6>{}));  // vacuum all round
+    EXPECT_EQ(d.uncollided, TransportProblem::Uncollided::Auto);
 }
 
 TEST(TransportProblem, RefusesWhatIsNotAProblem) {
@@ -45,6 +47,8 @@ TEST(TransportProblem, RefusesWhatIsNotAProblem) {
         {problem(R"({"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1, "g": 1})"), "/regions/0/g: must lie in"},
         {problem(region, R"(, "boundary": {"x-": "periodic"})"), "/boundary/x-: must be \"vacuum\" or \"reflective\""},
         {problem(region, R"(, "solver": {"bands": 7})"), "/solver/bands: must lie in [1, 6]"},
+        {problem(region, R"(, "solver": {"uncollided": "first"})"),
+         "/solver/uncollided: must be \"auto\", \"marched\" or \"swept\""},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1024, 1024, 1024]}, "regions": [],
             "points": [[0.5, 0.5, 0.5]]})", "/domain/cells: asks for more than 2^24 cells"},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]}, "regions": [],
