@@ -7,10 +7,20 @@
 
 namespace lucent {
 
-ImageError compareImages(const Image& test, const Image& reference, int margin) {
+namespace {
+
+void checkSameSize(const Image& test, const Image& reference) {
     if (test.width != reference.width || test.height != reference.height)
         throw Error("images differ in size: " + std::to_string(test.width) + "x" + std::to_string(test.height) +
                     " against " + std::to_string(reference.width) + "x" + std::to_string(reference.height));
+}
+
+double luminance(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+}  // namespace
+
+ImageError compareImages(const Image& test, const Image& reference, int margin) {
+    checkSameSize(test, reference);
     float peak = 0.0f;
     for (const auto& p : reference.pixels) peak = std::max({peak, p.r, p.g, p.b});
     const float threshold = 1e-3f * peak;
@@ -47,11 +57,28 @@ ImageError compareImages(const Image& test, const Image& reference, int margin) 
     return e;
 }
 
+NoisyReferenceError luminanceRelativeRmse(const Image& test, const Image& a, const Image& b) {
+    checkSameSize(test, a);
+    checkSameSize(test, b);
+    double err = 0.0, noise = 0.0, norm = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double ya = luminance(a.pixels[i]), yb = luminance(b.pixels[i]), t = 0.5 * (ya + yb);
+        if (!(t > 0.0)) continue;
+        const double d = luminance(test.pixels[i]) - t;
+        err += d * d;
+        noise += 0.25 * (ya - yb) * (ya - yb);
+        norm += t * t;
+    }
+    NoisyReferenceError e;
+    if (!(norm > 0.0)) return e;
+    e.raw = std::sqrt(err / norm);
+    e.noise = std::sqrt(noise / norm);
+    e.debiased = std::sqrt(std::max(0.0, err - noise) / norm);
+    return e;
+}
+
 double luminanceRelativeRmse(const Image& test, const Image& reference) {
-    if (test.width != reference.width || test.height != reference.height)
-        throw Error("images differ in size: " + std::to_string(test.width) + "x" + std::to_string(test.height) +
-                    " against " + std::to_string(reference.width) + "x" + std::to_string(reference.height));
-    auto luminance = [](const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+    checkSameSize(test, reference);
     double err = 0.0, norm = 0.0;
     for (size_t i = 0; i < reference.pixels.size(); ++i) {
         const double t = luminance(reference.pixels[i]);
