@@ -1,6 +1,8 @@
 #include "apps/run_program.h"
 
+#include <fcntl.h>
 #include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cerrno>
@@ -12,13 +14,20 @@ extern char** environ;
 
 namespace lucent {
 
-int runProgram(const std::vector<std::string>& argv) {
+int runProgram(const std::vector<std::string>& argv, const std::filesystem::path& log) {
     if (argv.empty()) throw Error("runProgram: no program");
     std::vector<char*> args;
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!log.empty()) {
+        posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    }
     pid_t pid = 0;
-    const int started = posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ);
+    const int started = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
     if (started != 0) throw Error(argv[0], std::string("cannot start: ") + std::strerror(started));
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)

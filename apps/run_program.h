@@ -8,8 +8,9 @@
 namespace lucent {
 
 // Runs argv[0] (looked up on PATH) with argv, waits, and returns its exit code;
-// throws Error when it cannot be started or dies by a signal.
-int runProgram(const std::vector<std::string>& argv);
+// throws Error when it cannot be started or dies by a signal. With a log, the
+// program's standard output and error go to that file (created or truncated).
+int runProgram(const std::vector<std::string>& argv, const std::filesystem::path& log = {});
 
 // A file Lucent installs beside its binary: <directory of this executable>/../share/lucent/name
 // (the build tree has the same layout). Throws Error naming the path if it is not there.

@@ -1,7 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Lucent builds, runs and tests with.
 # Root runs apt-get directly; anyone else goes through sudo.
+#   --peer   also Blender, whose Cycles lucent-bench-peer measures ss against
+#            (a benchmark's peer, never needed by the tests)
 set -euo pipefail
+
+peer=0
+for arg in "$@"; do
+  case "$arg" in
+    --peer) peer=1 ;;
+    *) echo "install-deps: unknown option '$arg' (known: --peer)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake pkg-config
@@ -25,6 +35,7 @@ packages=(
   # the plots of lucent bench accuracy
   python3-matplotlib
 )
+if [ "$peer" -eq 1 ]; then packages+=(blender); fi
 
 if [ "$(id -u)" -eq 0 ]; then sudo=(); else sudo=(sudo); fi
 
