@@ -4,7 +4,7 @@
 //
 //   build/bin/lucent-bench-hybrid speed    [--grids 64,128] [--albedos 0.5,0.9,0.99] [--repeats N]
 //   build/bin/lucent-bench-hybrid mdom     [--grids 64,128] [--directions 24,48] [--iterations 3] [--albedo 0.9]
-//                                          [--g 0.8] [--repeats N]
+//                                          [--g 0.8] [--repeats N] [--moments 16]
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z]
@@ -144,7 +144,7 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
 // device memory, and after each iteration the share of the converged light
 // still missing (the converged solve runs first, untimed, and compiles the kernels).
 void mdomSpeed(const std::vector<int>& grids, const std::vector<int>& directions, int iterations, double albedo,
-               double g, int repeats) {
+               double g, int repeats, int moments) {
     hybrid::MdomScattering solver;
     std::printf("# device: %s; sphere, albedo %.2f, g %.2f\n", solver.deviceName().c_str(), albedo, g);
     std::printf("grid,directions,moments,iterations,solve_s,per_iteration_s,per_sweep_s,direct_s,memory_mib,"
@@ -163,6 +163,7 @@ void mdomSpeed(const std::vector<int>& grids, const std::vector<int>& directions
             hybrid::MdomSettings s;
             s.resolution = grid;
             s.directions = n;
+            s.bands = int(std::lround(std::sqrt(double(moments))));
             s.tolerance = 1e-4;
             const double converged = power(solver.solve(object, scene.lights, s));
             s.maxIterations = iterations;
@@ -227,9 +228,12 @@ int main(int argc, char** argv) {
     md->add_option("--albedo", mdomAlbedo)->check(CLI::Range(0.0, 1.0));
     md->add_option("--g", mdomG)->check(CLI::Range(-0.99, 0.99));
     md->add_option("--repeats", repeats)->check(CLI::Range(1, 100));
+    int mdomMoments = 16;
+    md->add_option("--moments", mdomMoments, "Stored moments (4, 9, 16, 25, 36); fewer fit larger grids")
+        ->check(CLI::IsMember({4, 9, 16, 25, 36}));
     CLI11_PARSE(app, argc, argv);
     try {
-        if (md->parsed()) mdomSpeed(mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats);
+        if (md->parsed()) mdomSpeed(mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
         else if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
         else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
                       directions, moments, models, light);
