@@ -115,14 +115,18 @@ void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>&
     queue.enqueueWriteBuffer(source_, CL_TRUE, 0, source.size() * sizeof(glm::vec4), source.data());
 }
 
-void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
-    if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
-    queue.enqueueWriteBuffer(flux_, CL_TRUE, 0, flux.size() * sizeof(glm::vec4), flux.data());
+void DomSolver::scatterGeneration(cl::CommandQueue& queue) {
     scatter_.setArg(0, flux_);
     scatter_.setArg(1, total_);
     queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
     std::swap(flux_, lastFlux_);
     queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
+}
+
+void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
+    if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
+    queue.enqueueWriteBuffer(flux_, CL_TRUE, 0, flux.size() * sizeof(glm::vec4), flux.data());
+    scatterGeneration(queue);
     Rgb power(0.0);  // generation zero's, as iterate() measures each generation
     for (size_t v = 0; v < grid_.count(); ++v)
         for (int c = 0; c < 3; ++c) power[c] += flux[v * moments_][c];
@@ -151,11 +155,7 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     power_.setArg(2, cl_int(grid_.count()));
     queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
     std::vector<glm::vec4> partial = read(queue, partial_, kPartials);
-    scatter_.setArg(0, flux_);
-    scatter_.setArg(1, total_);
-    queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
-    std::swap(flux_, lastFlux_);
-    queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
+    scatterGeneration(queue);
     Rgb sum(0.0);
     for (int i = 0; i < kPartials; ++i)
         for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];

@@ -84,6 +84,9 @@ public:
     static size_t faceOffset(int face, const std::array<int, 3>& dims, int directions);
 
 private:
+    // The generation in the flux buffer joins the total and scatters into the
+    // next source; it becomes the last flux, and the flux buffer is cleared.
+    void scatterGeneration(cl::CommandQueue& queue);
     std::vector<glm::vec4> read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count);
 
     DomGrid grid_;
