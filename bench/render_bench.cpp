@@ -29,7 +29,6 @@ using namespace lucent;
 
 namespace {
 
-constexpr GLenum kFragmentShaderInvocations = 0x82F4;  // ARB_pipeline_statistics_query
 
 // n lights at one place, each with 1/n of the power: the image, and so the
 // fragment work, stays the same, and the sweep measures what each light costs.
@@ -89,25 +88,16 @@ int main(int argc, char** argv) {
             if (usefulFraction) {
                 // Fragments the proxies generate against those whose Gaussian is above the
                 // cut-off, at full resolution (reduced, the upsampling's own fragments would count).
-                GLuint queries[2];
-                glGenQueries(2, queries);
+                ScatterFragments fragments;
                 DrawOptions options;
                 options.surface = false;
                 options.scatterScale = 1;
-                frame.bindAndClear();
-                glBeginQuery(kFragmentShaderInvocations, queries[0]);
-                renderer.draw(view, options);
-                glEndQuery(kFragmentShaderInvocations);
                 options.discardBelow = 1e-4f;
+                options.fragments = &fragments;
                 frame.bindAndClear();
-                glBeginQuery(GL_SAMPLES_PASSED, queries[1]);
                 renderer.draw(view, options);
-                glEndQuery(GL_SAMPLES_PASSED);
-                GLuint64 invocations = 0, useful = 0;
-                glGetQueryObjectui64v(queries[0], GL_QUERY_RESULT, &invocations);
-                glGetQueryObjectui64v(queries[1], GL_QUERY_RESULT, &useful);
-                glDeleteQueries(2, queries);
-                *usefulFraction = invocations ? double(useful) / double(invocations) : 0.0;
+                const double invocations = double(fragments.shaded), useful = double(fragments.kept);
+                *usefulFraction = invocations > 0.0 ? useful / invocations : 0.0;
             }
             return median(times);
         };

@@ -35,6 +35,13 @@ struct TranslucentObject {
 // the renderer): its mesh and blockers in its own space, placed by its transform.
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples);
 
+// The scattering pass's proxy fragments in one frame: shaded (fragment shader
+// invocations, after the early depth test) and kept (not discarded; with
+// DrawOptions::discardBelow, those whose Gaussian is above the cut-off).
+struct ScatterFragments {
+    unsigned long long shaded = 0, kept = 0;
+};
+
 struct DrawOptions {
     bool surface = true;
     bool scattering = true;
@@ -45,6 +52,9 @@ struct DrawOptions {
     // Diagnostics: discard scattering fragments whose Gaussian line integral is
     // below this fraction of its largest possible value (0: keep all).
     float discardBelow = 0.0f;
+    // Diagnostics: when set, the scattering pass counts its proxies' fragments
+    // here (the render benchmark's useful fragments, with discardBelow).
+    struct ScatterFragments* fragments = nullptr;
     // The single-scattering pass at 1/k of the resolution on each axis (k = 1, 2
     // or 4), upsampled along the objects' depth: its cost falls by about k^2.
     // 0: the measured default (scatterScaleFor, docs/runtime.md).

@@ -48,6 +48,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     host_.resize(view.width, view.height);
     segments_.resize(view.width, view.height);
     inside_.resize(view.width, view.height);
+    reach_.resize(view.width, view.height);
     glViewport(0, 0, view.width, view.height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -124,9 +125,10 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     if (!frame.options.scattering) return;
     const glm::mat4 inverseProjection = glm::inverse(view.projection);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, segments_.framebuffer());
-    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);  // segment.frag writes the reach of every pixel
     glDisable(GL_CULL_FACE);
     glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_.texture(), 0);
+    glNamedFramebufferTexture(segments_.framebuffer(), GL_DEPTH_ATTACHMENT, reach_.texture(), 0);
     const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
     const GlProgram& p = segmentProgram_;
@@ -153,7 +155,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     glUniform1iv(p.uniform("backLayers"), gpu::kMaxRaySegments, units[1]);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
 }
 
 }  // namespace lucent

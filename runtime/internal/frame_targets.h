@@ -53,6 +53,9 @@ public:
     GLuint raySegments() const { return segments_.texture(); }
     // RGBA32F: the first two intervals each pixel's ray spends inside the objects (segment.frag).
     GLuint insideSegments() const { return inside_.texture(); }
+    // DEPTH_COMPONENT32F: the window depth of the farthest point the intervals
+    // inside reach, 0 where the ray has none (segment.frag).
+    GLuint reachDepth() const { return reach_.texture(); }
     GLuint emptyVertexArray() const { return emptyVao_; }
 
 private:
@@ -68,6 +71,7 @@ private:
     TextureTarget back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
     TextureTarget segments_{GL_RG32F};
     TextureTarget inside_{GL_RGBA32F};
+    TextureTarget reach_{GL_DEPTH_COMPONENT32F};
     GLuint emptyVao_ = 0;
 };
 

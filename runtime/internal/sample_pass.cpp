@@ -12,6 +12,9 @@
 namespace lucent {
 namespace {
 
+// ARB_pipeline_statistics_query (core in 4.6; the loader is 4.5).
+constexpr GLenum kFragmentShaderInvocations = 0x82F4;
+
 void setShNormalisation(const GlProgram& program) {
     // sqrt(2) K_lm (K_l0 for m = 0), so the shaders need no factorials.
     float normalisation[64];
@@ -89,17 +92,28 @@ void SamplePass::draw(FrameContext& frame) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     setFrameUniforms(frame);
-    const bool reduced = frame.scatterScale > 1;
-    if (reduced) {
-        const ViewSetup& low = *frame.scatterView;
-        reduced_.resize(low.width, low.height);
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearNamedFramebufferfv(reduced_.framebuffer(), GL_COLOR, 0, zero);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, reduced_.framebuffer());
-        glViewport(0, 0, low.width, low.height);
-    }
+    // The proxies go to the pass's own target at the scattering's resolution,
+    // depth-tested against the reach of each pixel (FrameTargets::reachDepth):
+    // fragments beyond the objects or beside them are rejected before shading.
+    const ViewSetup& target = *frame.scatterView;
+    light_.resize(target.width, target.height);
+    glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, frame.scatterTargets->reachDepth(), 0);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(light_.framebuffer(), GL_COLOR, 0, zero);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, light_.framebuffer());
+    glViewport(0, 0, target.width, target.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_DEPTH_CLAMP);  // the proxies' depth is clamped, never clipped (scatter.geom)
     glBindTextureUnit(gpu::kUnitRaySegments, frame.scatterTargets->raySegments());
     glBindTextureUnit(gpu::kUnitInsideSegments, frame.scatterTargets->insideSegments());
+    const bool counting = frame.options.fragments != nullptr;
+    GLuint queries[2] = {0, 0};
+    if (counting) {
+        glGenQueries(2, queries);
+        glBeginQuery(kFragmentShaderInvocations, queries[0]);
+        glBeginQuery(GL_SAMPLES_PASSED, queries[1]);
+    }
     const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
@@ -133,7 +147,33 @@ void SamplePass::draw(FrameContext& frame) {
         glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
         o.samples->draw();
     }
-    if (reduced) upsample(frame);
+    if (counting) countFragments(queries, *frame.options.fragments);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_DEPTH_TEST);
+    glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, 0, 0);
+    if (frame.scatterScale > 1) upsample(frame);
+    else addLight(frame);
+}
+
+void SamplePass::addLight(const FrameContext& frame) const {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.hostFramebuffer);
+    glViewport(0, 0, frame.view.width, frame.view.height);
+    glUseProgram(addProgram_.id());
+    glBindTextureUnit(0, light_.texture());
+    glUniform1i(addProgram_.uniform("light"), 0);
+    glBindVertexArray(frame.targets.emptyVertexArray());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void SamplePass::countFragments(const GLuint (&queries)[2], ScatterFragments& fragments) {
+    glEndQuery(kFragmentShaderInvocations);
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 shaded = 0, kept = 0;
+    glGetQueryObjectui64v(queries[0], GL_QUERY_RESULT, &shaded);
+    glGetQueryObjectui64v(queries[1], GL_QUERY_RESULT, &kept);
+    glDeleteQueries(2, queries);
+    fragments.shaded += shaded;
+    fragments.kept += kept;
 }
 
 void SamplePass::upsample(const FrameContext& frame) const {
@@ -141,7 +181,7 @@ void SamplePass::upsample(const FrameContext& frame) const {
     glViewport(0, 0, frame.view.width, frame.view.height);
     const GlProgram& p = upsampleProgram_;
     glUseProgram(p.id());
-    glBindTextureUnit(0, reduced_.texture());
+    glBindTextureUnit(0, light_.texture());
     glBindTextureUnit(1, frame.scatterTargets->insideSegments());
     glBindTextureUnit(2, frame.targets.insideSegments());
     glUniform1i(p.uniform("reducedLight"), 0);

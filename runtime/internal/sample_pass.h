@@ -2,9 +2,11 @@
 // Pass 2 of thesis 3.4.2: every sample's Gaussian, expanded in a geometry shader
 // and integrated exactly along each pixel's ray segment (scatter.vert, .geom,
 // .frag), summed. Isotropic media reuse the light each sample receives while the
-// lights and the medium scale stay put (received.comp). At a reduced resolution
-// the sum goes to its own target first and is upsampled along the objects' depth
-// into the host's framebuffer (upsample.frag).
+// lights and the medium scale stay put (received.comp). The sum goes to the
+// pass's own target first, whose depth is each pixel's reach inside the objects
+// (proxies beyond it are rejected before shading), and is then added to the
+// host's framebuffer (add_light.frag), or upsampled along the objects' depth
+// when the scattering is reduced (upsample.frag).
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/render_pass.h"
@@ -22,6 +24,8 @@ private:
     void setFrameUniforms(const FrameContext& frame) const;
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
     void upsample(const FrameContext& frame) const;
+    void addLight(const FrameContext& frame) const;
+    static void countFragments(const GLuint (&queries)[2], ScatterFragments& fragments);
     double cutoffSigmas_;
     GlProgram scatterProgram_{
         {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}}};
@@ -31,7 +35,9 @@ private:
         {"DENSITY_SLABS"}};
     GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
-    TextureTarget reduced_{GL_RGBA32F};  // the scattered light at the reduced resolution
+    GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};
+    // The scattered light at the scattering's resolution, before upsampling or adding.
+    TextureTarget light_{GL_RGBA32F};
 };
 
 }  // namespace lucent

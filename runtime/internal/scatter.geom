@@ -21,7 +21,7 @@ in VertexOut {
 } v[];
 
 out GeometryOut {
-    flat vec3 viewCentre;    // of this square's Gaussian: the sample's or its image's
+    flat vec3 viewCentre;    // of this proxy's Gaussian: the sample's or its image's
     flat vec3 anchorOffset;  // that centre minus the sample's, where its light is known
     flat float width;
     flat vec3 radiance;
@@ -35,6 +35,13 @@ out GeometryOut {
 uniform mat4 projection;
 uniform float cutoffSigmas;  // sqrt(2 ln(1 / epsilon)): exp(-r^2 / 2 s^2) = epsilon at r = cutoffSigmas * s
 
+// The window depth of the sphere's nearest point (as NDC z), the same over the
+// whole proxy: the pass's depth test (GL_LESS against each pixel's reach,
+// segment.frag) then rejects the pixels whose ray leaves the objects before it
+// meets the sphere, and those that miss the objects. Conservative: along any ray
+// the planar depth grows, and no point of the sphere is nearer than this.
+float proxyDepth;
+
 void emit(vec3 centre, vec4 clip) {
     o.viewCentre = centre;
     o.anchorOffset = centre - v[0].viewCentre;
@@ -45,12 +52,14 @@ void emit(vec3 centre, vec4 clip) {
     o.viewDepth = v[0].viewDepth;
     o.viewFromFront = v[0].viewFromFront;
     o.region = v[0].region;
-    gl_Position = clip;
+    gl_Position = vec4(clip.xy, proxyDepth * clip.w, clip.w);
     EmitVertex();
 }
 
-void square(vec3 c, float r) {
+void proxy(vec3 c, float r) {
     float d = length(c);
+    vec4 nearest = projection * vec4(0.0, 0.0, min(c.z + r, 0.0), 1.0);
+    proxyDepth = c.z + r < 0.0 ? clamp(nearest.z / nearest.w, -1.0, 1.0) : -1.0;
     if (d <= r * 1.0001 || c.z > -r) {
         // The camera is inside or the sphere crosses the camera plane: cover the screen.
         emit(c, vec4(-1, -1, 0, 1));
@@ -62,6 +71,9 @@ void square(vec3 c, float r) {
     }
     // The cone from the eye tangent to the sphere cuts the plane through c normal to
     // c in a circle of radius r d / sqrt(d^2 - r^2); the square holds that circle.
+    // (An octagon, 95% of whose area is the circle's against the square's 79%,
+    // took the viewer's frame from 212 to 261 ms, and one triangle, 60%, to 217:
+    // llvmpipe shades 4x2 blocks whole and pays per triangle, docs/runtime.md.)
     vec3 axis = c / d;
     vec3 u = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
     vec3 w = cross(axis, u);
@@ -85,8 +97,8 @@ void main() {
         shift = max(shift, (length(v[0].gradient[k]) + view) * s * s);
     }
     float r = cutoffSigmas * s + shift;
-    square(v[0].viewCentre, r);
+    proxy(v[0].viewCentre, r);
     // The boundary lies halfway to the image: past the cut-off, the image adds nothing inside.
     float toImage = length(v[0].viewImage - v[0].viewCentre);
-    if (toImage > 0.0 && toImage < 2.0 * cutoffSigmas * s) square(v[0].viewImage, r);
+    if (toImage > 0.0 && toImage < 2.0 * cutoffSigmas * s) proxy(v[0].viewImage, r);
 }

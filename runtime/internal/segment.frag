@@ -58,4 +58,9 @@ void main() {
         }
     }
     inside = vec4(intervals[0], intervals[1]);
+    // The depth of the farthest point any interval reaches, 0 where none is
+    // inside: the scattering pass's proxies are depth-tested against it
+    // (scatter.geom), so that a Gaussian wholly beyond it, or a pixel whose ray
+    // misses the objects, costs no fragment shading.
+    gl_FragDepth = intervals[0].y > intervals[0].x ? min(back, host) : 0.0;
 }
