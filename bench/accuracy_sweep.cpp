@@ -49,7 +49,7 @@ const std::vector<Knob>& knobs() {
          [](SweepSetting& s, double v) { s.preprocess.projectionDirections = int(v); }},
         {"sh-order", {2, 3, 4, 5, 6, 7, 8}, [](SweepSetting& s, double v) { s.preprocess.shOrder = int(v); }},
         {"width-factor", {1.0, 1.25, 1.5, 2.0, 2.5}, [](SweepSetting& s, double v) { s.preprocess.widthFactor = v; }},
-        {"cutoff", {1e-2, 1e-3, 1e-4, 1e-5}, [](SweepSetting& s, double v) { s.cutoff = v; }},
+        {"cutoff", {1e-1, 3e-2, 1e-2, 1e-3, 1e-4}, [](SweepSetting& s, double v) { s.cutoff = v; }},
         {"layer-spacing", {0.25, 0.5, 0.75, 1.0}, [](SweepSetting& s, double v) { s.preprocess.layerSpacing = v; }},
     };
     return table;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/method.h"
 #include "preprocess/preprocessor.h"
 #include "runtime/offscreen_context.h"
 
@@ -16,7 +17,7 @@ namespace lucent {
 struct SweepSetting {
     std::string knob, value;
     PreprocessSettings preprocess;
-    double cutoff = 1e-4;  // runtime: a Gaussian is drawn where it exceeds this fraction of its peak
+    double cutoff = kDefaultGaussianCutoff;  // runtime: a Gaussian is drawn where it exceeds this fraction of its peak
 };
 
 // The knobs: samples, published (the thesis scheme against samples),

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
                 DrawOptions options;
                 options.surface = false;
                 options.scatterScale = 1;
-                options.discardBelow = 1e-4f;
+                options.discardBelow = float(kDefaultGaussianCutoff);
                 options.fragments = &fragments;
                 frame.bindAndClear();
                 renderer.draw(view, options);

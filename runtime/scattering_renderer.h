@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/method.h"
 #include "core/sample_set.h"
 #include "core/scattering_grid.h"
 #include "core/scene.h"
@@ -75,7 +76,7 @@ public:
     // On the current context, once loadGl has loaded Lucent's functions from it
     // (runtime/opengl.h; OffscreenContext does it); Error otherwise.
     // cutoff: a Gaussian is drawn where it exceeds this fraction of its peak.
-    explicit ScatteringRenderer(double cutoff = 1e-4);
+    explicit ScatteringRenderer(double cutoff = kDefaultGaussianCutoff);
     ~ScatteringRenderer();
     ScatteringRenderer(const ScatteringRenderer&) = delete;
     ScatteringRenderer& operator=(const ScatteringRenderer&) = delete;

@@ -30,7 +30,9 @@ void setShNormalisation(const GlProgram& program) {
 
 }  // namespace
 
-SamplePass::SamplePass(double cutoff) : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))) {
+SamplePass::SamplePass(double cutoff)
+    : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))),
+      keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {
     for (const GlProgram* p : {&scatterProgram_, &scatterSlabsProgram_, &receivedProgram_}) {
         setShNormalisation(*p);
         glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
@@ -59,6 +61,7 @@ void SamplePass::setFrameUniforms(const FrameContext& frame) const {
         glProgramUniform4fv(id, program->uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
         glProgramUniform1i(id, program->uniform("lightCount"), frame.lights.count);
         glProgramUniform1f(id, program->uniform("cutoffSigmas"), float(cutoffSigmas_));
+        glProgramUniform1f(id, program->uniform("keptMassInverse"), float(keptMassInverse_));
         glProgramUniform1f(id, program->uniform("discardBelow"), frame.options.discardBelow);
         glProgramUniform1f(id, program->uniform("extinctionScale"), frame.options.extinctionScale);
         glProgramUniform1i(id, program->uniform("raySegments"), GLint(gpu::kUnitRaySegments));

@@ -27,6 +27,10 @@ private:
     void addLight(const FrameContext& frame) const;
     static void countFragments(const GLuint (&queries)[2], ScatterFragments& fragments);
     double cutoffSigmas_;
+    // A Gaussian seen on screen is a 2D Gaussian; the square around its cut-off
+    // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
+    // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
+    double keptMassInverse_;
     GlProgram scatterProgram_{
         {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}}};
     // The same for objects of constant-density slabs (scatter.frag's table).

@@ -34,6 +34,11 @@ out GeometryOut {
 
 uniform mat4 projection;
 uniform float cutoffSigmas;  // sqrt(2 ln(1 / epsilon)): exp(-r^2 / 2 s^2) = epsilon at r = cutoffSigmas * s
+// Projected on the screen a Gaussian is a 2D Gaussian: a fraction epsilon of its
+// mass lies beyond the circle of radius cutoffSigmas * s, and the square around
+// that circle keeps erf(cutoffSigmas / sqrt 2)^2 of it. The kept part is scaled
+// to the whole by the inverse, so the cut-off moves light inwards and loses none.
+uniform float keptMassInverse;
 
 // The window depth of the sphere's nearest point (as NDC z), the same over the
 // whole proxy: the pass's depth test (GL_LESS against each pixel's reach,
@@ -46,7 +51,7 @@ void emit(vec3 centre, vec4 clip) {
     o.viewCentre = centre;
     o.anchorOffset = centre - v[0].viewCentre;
     o.width = v[0].width;
-    o.radiance = v[0].radiance;
+    o.radiance = v[0].radiance * keptMassInverse;
     o.gradient = v[0].gradient;
     o.extinction = v[0].extinction;
     o.viewDepth = v[0].viewDepth;
@@ -56,16 +61,18 @@ void emit(vec3 centre, vec4 clip) {
     EmitVertex();
 }
 
-void proxy(vec3 c, float r) {
+// A square around the sphere (centre c, radius r) outside which the Gaussian
+// centred at gaussian adds nothing.
+void proxy(vec3 gaussian, vec3 c, float r) {
     float d = length(c);
     vec4 nearest = projection * vec4(0.0, 0.0, min(c.z + r, 0.0), 1.0);
     proxyDepth = c.z + r < 0.0 ? clamp(nearest.z / nearest.w, -1.0, 1.0) : -1.0;
     if (d <= r * 1.0001 || c.z > -r) {
         // The camera is inside or the sphere crosses the camera plane: cover the screen.
-        emit(c, vec4(-1, -1, 0, 1));
-        emit(c, vec4(1, -1, 0, 1));
-        emit(c, vec4(-1, 1, 0, 1));
-        emit(c, vec4(1, 1, 0, 1));
+        emit(gaussian, vec4(-1, -1, 0, 1));
+        emit(gaussian, vec4(1, -1, 0, 1));
+        emit(gaussian, vec4(-1, 1, 0, 1));
+        emit(gaussian, vec4(1, 1, 0, 1));
         EndPrimitive();
         return;
     }
@@ -78,10 +85,10 @@ void proxy(vec3 c, float r) {
     vec3 u = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
     vec3 w = cross(axis, u);
     float h = r * d / sqrt(d * d - r * r);
-    emit(c, projection * vec4(c + h * (-u - w), 1.0));
-    emit(c, projection * vec4(c + h * (u - w), 1.0));
-    emit(c, projection * vec4(c + h * (-u + w), 1.0));
-    emit(c, projection * vec4(c + h * (u + w), 1.0));
+    emit(gaussian, projection * vec4(c + h * (-u - w), 1.0));
+    emit(gaussian, projection * vec4(c + h * (u - w), 1.0));
+    emit(gaussian, projection * vec4(c + h * (-u + w), 1.0));
+    emit(gaussian, projection * vec4(c + h * (u + w), 1.0));
     EndPrimitive();
 }
 
@@ -97,8 +104,16 @@ void main() {
         shift = max(shift, (length(v[0].gradient[k]) + view) * s * s);
     }
     float r = cutoffSigmas * s + shift;
-    proxy(v[0].viewCentre, r);
-    // The boundary lies halfway to the image: past the cut-off, the image adds nothing inside.
-    float toImage = length(v[0].viewImage - v[0].viewCentre);
-    if (toImage > 0.0 && toImage < 2.0 * cutoffSigmas * s) proxy(v[0].viewImage, r);
+    proxy(v[0].viewCentre, v[0].viewCentre, r);
+    // The boundary lies halfway to the image: past the cut-off, the image adds
+    // nothing inside. What it adds lies in the cap of its sphere beyond the
+    // boundary plane, at distance a >= d / 2 along the normal and |p|^2 <= r^2 - a^2
+    // across it; from the midpoint m that is (a - d / 2)^2 + |p|^2 <= r^2 - d a + d^2 / 4
+    // <= r^2 - d^2 / 4. So the cap lies in the sphere of radius sqrt(r^2 - d^2 / 4)
+    // about m, whose square is smaller by 1 - d^2 / 4 r^2 in area (by a third on
+    // average over the images' distances).
+    vec3 toImage = v[0].viewImage - v[0].viewCentre;
+    float d = length(toImage);
+    if (d > 0.0 && d < 2.0 * cutoffSigmas * s)
+        proxy(v[0].viewImage, v[0].viewCentre + 0.5 * toImage, sqrt(max(r * r - 0.25 * d * d, 0.0)));
 }

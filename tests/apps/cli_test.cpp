@@ -389,7 +389,7 @@ TEST(Cli, BenchAccuracyRunsNoShellAndWritesItsPlots) {
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "PWNED"));
     const auto rows = test::readCsv(std::filesystem::path(hostile) / "accuracy.csv");
-    EXPECT_EQ(rows.size(), 4u);  // four cut-offs
+    EXPECT_EQ(rows.size(), 5u);  // five cut-offs
     for (const char* plot : {"accuracy-pareto.png", "accuracy-knobs.png"})
         EXPECT_GT(std::filesystem::file_size(std::filesystem::path(hostile) / plot), 1000u) << plot;
 }
