@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <memory>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "preprocess/density_heuristic.h"
 #include "preprocess/distance_field.h"
@@ -255,6 +258,10 @@ std::vector<DiskSample> fitPoissonDisks(const std::string& name, RadiusSurface& 
     for (int iteration = 0; iteration < 3 && std::abs(n0 / target - 1.0) > 0.08; ++iteration) {
         const double r1 = r * std::cbrt(n0 / target);
         const double n1 = sampleWith(r1);
+        if (std::abs(n1 / target - 1.0) <= 0.08) {  // as close as a first pass is asked to be
+            r = r1;
+            break;
+        }
         const double k = std::clamp(std::log(n1 / n0) / std::log(r / r1), 1.5, 3.5);
         r = r1 * std::pow(n1 / target, 1.0 / k);
         n0 = sampleWith(r);
@@ -312,16 +319,36 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
     edgeLength /= double(std::max<size_t>(object.mesh().triangles.size(), 1));
     const Vec3 extent = object.mesh().bounds().max - object.mesh().bounds().min;
     const double curvatureStep = std::min(2.0 * edgeLength, 0.25 * std::min({extent.x, extent.y, extent.z}));
+    std::vector<DiskSample> kept;
+    kept.reserve(disks.size());
+    for (const auto& d : disks)
+        if (!object.insideBlocker(d.position)) kept.push_back(d);
+    const size_t n = kept.size(), base = set.positions.size();
     DescribedSamples described;
-    for (const auto& d : disks) {
-        if (object.insideBlocker(d.position)) continue;
-        described.positions.push_back(d.position);
-        set.positions.emplace_back(d.position);
-        set.radii.push_back(float(d.radius));
+    described.positions.resize(n);
+    described.weighted.resize(n);
+    set.positions.resize(base + n);
+    set.radii.resize(base + n);
+    set.scattering.resize(base + n);
+    set.extinction.resize(base + n);
+    set.widths.resize(base + n);
+    set.region.resize(base + n);
+    set.image.resize(base + n);
+    set.boundary.resize(base + n);
+    std::vector<int> slabAxis(n, -1);
+    // Each sample on its own (closest points, rays across its region, its
+    // boundary ball: four closest-point queries and a ray), so in parallel.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+        const DiskSample& d = kept[i];
+        const size_t k = base + i;
+        described.positions[i] = d.position;
+        set.positions[k] = glm::vec3(d.position);
+        set.radii[k] = float(d.radius);
         // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
         float width = float(settings.widthFactor * d.radius / (2.0 * std::sqrt(2.0 * std::log(2.0))));
-        set.scattering.emplace_back(glm::vec3(object.scattering(d.position)));
-        set.extinction.emplace_back(glm::vec3(object.extinction(d.position)));
+        set.scattering[k] = glm::vec3(object.scattering(d.position));
+        set.extinction[k] = glm::vec3(object.extinction(d.position));
         // The region a Gaussian is clipped to: the object minus its blockers, and its
         // density slab where the density jumps between slabs; its mirror image
         // across the region's nearest boundary (preprocess/sample_weights.h).
@@ -332,7 +359,7 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
         if (!published) {
             std::optional<DensitySlab> slab = object.density().slabAround(d.position);
             if (slab) {
-                set.parameters.regionAxis = uint32_t(slab->axis);
+                slabAxis[i] = int(slab->axis);
                 region = glm::vec2(float(std::max(slab->lo, -1e30)), float(std::min(slab->hi, 1e30)));
                 regionKey = std::bit_cast<uint32_t>(region.x);  // one key per slab
             }
@@ -348,12 +375,15 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
             const double behind = across - glm::length(d.position - nearest);
             thickness = behind > kThinReach * width ? HUGE_VALF : float(across);
         }
-        set.widths.push_back(width);
-        set.region.push_back(region);
-        set.image.emplace_back(image);
-        set.boundary.push_back(published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep));
-        described.weighted.push_back({glm::vec3(d.position), glm::vec3(image), width, regionKey, thickness});
+        set.widths[k] = width;
+        set.region[k] = region;
+        set.image[k] = glm::vec3(image);
+        set.boundary[k] = published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep);
+        described.weighted[i] = {glm::vec3(d.position), glm::vec3(image), width, regionKey, thickness};
     }
+    });
+    for (int axis : slabAxis)
+        if (axis >= 0) set.parameters.regionAxis = uint32_t(axis);
     return described;
 }
 
