@@ -339,48 +339,48 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
     // Each sample on its own (closest points, rays across its region, its
     // boundary ball: four closest-point queries and a ray), so in parallel.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) {
-        const DiskSample& d = kept[i];
-        const size_t k = base + i;
-        described.positions[i] = d.position;
-        set.positions[k] = glm::vec3(d.position);
-        set.radii[k] = float(d.radius);
-        // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
-        float width = float(settings.widthFactor * d.radius / (2.0 * std::sqrt(2.0 * std::log(2.0))));
-        set.scattering[k] = glm::vec3(object.scattering(d.position));
-        set.extinction[k] = glm::vec3(object.extinction(d.position));
-        // The region a Gaussian is clipped to: the object minus its blockers, and its
-        // density slab where the density jumps between slabs; its mirror image
-        // across the region's nearest boundary (preprocess/sample_weights.h).
-        glm::vec2 region(set.bounds.min.x, set.bounds.max.x);
-        uint32_t regionKey = 0;
-        Vec3 image = d.position;
-        float thickness = HUGE_VALF;
-        if (!published) {
-            std::optional<DensitySlab> slab = object.density().slabAround(d.position);
-            if (slab) {
-                slabAxis[i] = int(slab->axis);
-                region = glm::vec2(float(std::max(slab->lo, -1e30)), float(std::min(slab->hi, 1e30)));
-                regionKey = std::bit_cast<uint32_t>(region.x);  // one key per slab
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const DiskSample& d = kept[i];
+            const size_t k = base + i;
+            described.positions[i] = d.position;
+            set.positions[k] = glm::vec3(d.position);
+            set.radii[k] = float(d.radius);
+            // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
+            float width = float(settings.widthFactor * d.radius / (2.0 * std::sqrt(2.0 * std::log(2.0))));
+            set.scattering[k] = glm::vec3(object.scattering(d.position));
+            set.extinction[k] = glm::vec3(object.extinction(d.position));
+            // The region a Gaussian is clipped to: the object minus its blockers, and its
+            // density slab where the density jumps between slabs; its mirror image
+            // across the region's nearest boundary (preprocess/sample_weights.h).
+            glm::vec2 region(set.bounds.min.x, set.bounds.max.x);
+            uint32_t regionKey = 0;
+            Vec3 image = d.position;
+            float thickness = HUGE_VALF;
+            if (!published) {
+                std::optional<DensitySlab> slab = object.density().slabAround(d.position);
+                if (slab) {
+                    slabAxis[i] = int(slab->axis);
+                    region = glm::vec2(float(std::max(slab->lo, -1e30)), float(std::min(slab->hi, 1e30)));
+                    regionKey = std::bit_cast<uint32_t>(region.x);  // one key per slab
+                }
+                const Vec3 nearest = object.closestRegionBoundary(d.position);
+                image = 2.0 * nearest - d.position;
+                const double across = regionThickness(object, slab, nearest, d.position, kThinReach * kMostWidening * width);
+                // A plate or a tube a few radii across holds few layers: a view ray
+                // crosses the sum of the Gaussians at nearly one point of it, and its
+                // ripple shows as grain. Wider Gaussians smooth it; the weights count
+                // what the far side then clips (docs/accuracy.md, Thin parts).
+                if (std::isfinite(across))
+                    width *= float(std::clamp(kThinWidening * d.radius / across, 1.0, kMostWidening));
+                const double behind = across - glm::length(d.position - nearest);
+                thickness = behind > kThinReach * width ? HUGE_VALF : float(across);
             }
-            const Vec3 nearest = object.closestRegionBoundary(d.position);
-            image = 2.0 * nearest - d.position;
-            const double across = regionThickness(object, slab, nearest, d.position, kThinReach * kMostWidening * width);
-            // A plate or a tube a few radii across holds few layers: a view ray
-            // crosses the sum of the Gaussians at nearly one point of it, and its
-            // ripple shows as grain. Wider Gaussians smooth it; the weights count
-            // what the far side then clips (docs/accuracy.md, Thin parts).
-            if (std::isfinite(across))
-                width *= float(std::clamp(kThinWidening * d.radius / across, 1.0, kMostWidening));
-            const double behind = across - glm::length(d.position - nearest);
-            thickness = behind > kThinReach * width ? HUGE_VALF : float(across);
+            set.widths[k] = width;
+            set.region[k] = region;
+            set.image[k] = glm::vec3(image);
+            set.boundary[k] = published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep);
+            described.weighted[i] = {glm::vec3(d.position), glm::vec3(image), width, regionKey, thickness};
         }
-        set.widths[k] = width;
-        set.region[k] = region;
-        set.image[k] = glm::vec3(image);
-        set.boundary[k] = published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep);
-        described.weighted[i] = {glm::vec3(d.position), glm::vec3(image), width, regionKey, thickness};
-    }
     });
     for (int axis : slabAxis)
         if (axis >= 0) set.parameters.regionAxis = uint32_t(axis);
