@@ -1,12 +1,29 @@
 #include "core/fingerprint.h"
 
+#include <xxhash.h>
+
 #include <fstream>
+#include <new>
 #include <vector>
 
 #include "core/error.h"
 #include "core/input_file.h"
 
 namespace lucent {
+
+void Fingerprint::FreeState::operator()(XXH3_state_s* state) const { XXH3_freeState(state); }
+
+Fingerprint::Fingerprint() : state_(XXH3_createState()) {
+    if (!state_ || XXH3_64bits_reset(state_.get()) != XXH_OK) throw std::bad_alloc();
+}
+
+Fingerprint::~Fingerprint() = default;
+
+void Fingerprint::addBytes(const void* data, size_t size) {
+    if (size > 0) XXH3_64bits_update(state_.get(), data, size);
+}
+
+uint64_t Fingerprint::value() const { return XXH3_64bits_digest(state_.get()); }
 
 void Fingerprint::addFile(const std::filesystem::path& file) {
     addText(file.filename().string());

@@ -1,25 +1,36 @@
 #pragma once
-// A 64-bit FNV-1a digest of files and text: cheap identity for "was this sample
-// file made from this mesh and medium?" and the sample file's checksum.
+// A 64-bit XXH3 digest (xxHash, seed 0) of files and text: cheap identity for
+// "was this sample file made from this mesh and medium?" and the sample file's
+// checksum. Adding bytes in pieces gives the digest of their concatenation.
+// (FNV-1a, one multiply per byte, took 60 ms of the 34 MB default sample file's
+// load; XXH3 reads it at memory speed.)
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string_view>
+
+struct XXH3_state_s;
 
 namespace lucent {
 
 class Fingerprint {
 public:
-    void addBytes(const void* data, size_t size) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < size; ++i) hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
-    }
+    Fingerprint();
+    ~Fingerprint();
+    Fingerprint(const Fingerprint&) = delete;
+    Fingerprint& operator=(const Fingerprint&) = delete;
+
+    void addBytes(const void* data, size_t size);
     void addText(std::string_view text) { addBytes(text.data(), text.size()); }
     // A missing, irregular or oversized file adds only its name; loading it later reports the problem.
     void addFile(const std::filesystem::path& file);
-    uint64_t value() const { return hash_; }
+    uint64_t value() const;
 
 private:
-    uint64_t hash_ = 0xcbf29ce484222325ull;
+    struct FreeState {
+        void operator()(XXH3_state_s* state) const;
+    };
+    std::unique_ptr<XXH3_state_s, FreeState> state_;
 };
 
 }  // namespace lucent

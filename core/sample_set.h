@@ -74,7 +74,7 @@ struct SampleSet {
     size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
 };
 
-inline constexpr uint32_t kSampleFileVersion = 4;
+inline constexpr uint32_t kSampleFileVersion = 5;
 // SH bands a sample file may hold: the most the runtime evaluates (runtime/internal/sample_light.glsl).
 inline constexpr uint32_t kMaxSampleShOrder = 8;
 

@@ -19,6 +19,8 @@ packages=(
   libcgal-dev libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   # math, parsing, command line
   libembree-dev libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  # the sample file's checksum and the objects' fingerprints
+  libxxhash-dev
   # image output
   libpng-dev libopenexr-dev
   # OpenGL: EGL and OSMesa on Mesa's llvmpipe (libgl1-mesa-dri is what EGL needs

@@ -1,6 +1,7 @@
 #include "core/sample_set.h"
 
 #include <gtest/gtest.h>
+#include <xxhash.h>
 
 #include <cstring>
 
@@ -132,9 +133,8 @@ TEST(SampleFile, RejectsOutOfRangeHeaderFields) {
     auto patched = [&](size_t offset, uint32_t value) {
         std::vector<char> b = good;
         std::memcpy(b.data() + offset, &value, 4);
-        uint64_t fnv = 0xcbf29ce484222325ull;
-        for (size_t i = 0; i + 8 < b.size(); ++i) fnv = (fnv ^ static_cast<unsigned char>(b[i])) * 0x100000001b3ull;
-        std::memcpy(b.data() + b.size() - 8, &fnv, 8);
+        const uint64_t checksum = XXH3_64bits(b.data(), b.size() - 8);
+        std::memcpy(b.data() + b.size() - 8, &checksum, 8);
         writeBytes(dir.path() / "p.lsf", b);
         return readError(dir.path() / "p.lsf");
     };
