@@ -3,6 +3,8 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -34,11 +36,12 @@ Vec3 TriangleMesh::faceNormal(size_t face) const {
 
 std::vector<std::array<Vec3, 3>> cornerNormals(const TriangleMesh& mesh) {
     const size_t faces = mesh.triangles.size();
-    std::vector<Vec3> unit(faces);
+    // Each face's normal scaled by twice its area (what the corners sum), and its direction.
+    std::vector<Vec3> weighted(faces), unit(faces);
     for (size_t f = 0; f < faces; ++f) {
-        const Vec3 n = mesh.faceNormal(f);
-        const double length = glm::length(n);
-        unit[f] = length > 0.0 ? n / length : Vec3(0.0);
+        weighted[f] = mesh.faceNormal(f);
+        const double length = glm::length(weighted[f]);
+        unit[f] = length > 0.0 ? weighted[f] / length : Vec3(0.0);
     }
     // The faces around each vertex, in compressed rows.
     std::vector<uint32_t> start(mesh.positions.size() + 1, 0), around(3 * faces);
@@ -51,15 +54,17 @@ std::vector<std::array<Vec3, 3>> cornerNormals(const TriangleMesh& mesh) {
 
     const double cosCrease = std::cos(kCreaseDegrees * kPi / 180.0);
     std::vector<std::array<Vec3, 3>> corners(faces);
-    for (size_t f = 0; f < faces; ++f)
-        for (int c = 0; c < 3; ++c) {
-            const uint32_t v = mesh.triangles[f][c];
-            Vec3 sum(0.0);
-            for (uint32_t i = start[v]; i < start[v + 1]; ++i)
-                if (glm::dot(unit[around[i]], unit[f]) >= cosCrease) sum += mesh.faceNormal(around[i]);
-            const double length = glm::length(sum);
-            corners[f][c] = length > 0.0 ? sum / length : unit[f];
-        }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, faces, 4096), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t f = range.begin(); f != range.end(); ++f)
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t v = mesh.triangles[f][c];
+                Vec3 sum(0.0);
+                for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+                    if (glm::dot(unit[around[i]], unit[f]) >= cosCrease) sum += weighted[around[i]];
+                const double length = glm::length(sum);
+                corners[f][c] = length > 0.0 ? sum / length : unit[f];
+            }
+    });
     return corners;
 }
 
