@@ -50,8 +50,7 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& war
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers)
     : desc_(desc), objectMesh_(std::move(mesh)),
-      mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)),
-      boundary_(mesh_), cornerNormals_(cornerNormals(mesh_)) {
+      mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)) {
     if (!placed()) objectMesh_ = TriangleMesh{};
     // The density is the object's: given in its own space, and carried with it.
     density_ = makeDensity(desc.medium.density, objectMesh().bounds());
@@ -73,7 +72,7 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vecto
             blocker = placedMesh(blocker, desc.transform, file);
         }
         for (const Vec3& p : blocker.positions)
-            if (!boundary_.contains(p))
+            if (!contains(p))
                 throw Error(file, "blocker is not inside its object '" + desc.name + "'");
         blockers_.emplace_back(blocker);
         blockerMeshes_.push_back(std::move(blocker));
@@ -87,7 +86,7 @@ bool VolumeObject::insideBlocker(const Vec3& p) const {
 }
 
 Vec3 VolumeObject::closestRegionBoundary(const Vec3& p) const {
-    Vec3 best = boundary_.closestPoint(p);
+    Vec3 best = boundary().closestPoint(p);
     double distance = glm::length(best - p);
     auto consider = [&](const Vec3& q) {
         const double d = glm::length(q - p);
@@ -118,7 +117,7 @@ double VolumeObject::densityPath(const Vec3& origin, const Vec3& dir, double tMa
 
 double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax) const {
     thread_local std::vector<Interval> inside;
-    boundary_.insideIntervals(origin, dir, tMax, inside);
+    boundary().insideIntervals(origin, dir, tMax, inside);
     double path = 0.0;
     for (const Interval& s : inside) path += density_->integrate(origin + s.t0 * dir, origin + s.t1 * dir);
     return path;

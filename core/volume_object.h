@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/density_field.h"
+#include "core/lazy.h"
 #include "core/mesh_raycaster.h"
 #include "core/scene.h"
 #include "core/triangle_mesh.h"
@@ -34,7 +35,10 @@ public:
     const std::vector<TriangleMesh>& objectBlockerMeshes() const {
         return placed() ? objectBlockerMeshes_ : blockerMeshes_;
     }
-    const MeshRaycaster& boundary() const { return boundary_; }
+    // Built on first use (37 ms on the bunny's 75k faces), from any thread.
+    const MeshRaycaster& boundary() const {
+        return boundary_.get([this] { return MeshRaycaster(mesh_); });
+    }
     const DensityField& density() const { return *density_; }
 
     // Integral of density over the parts of origin + t dir (0 <= t <= tMax, dir unit)
@@ -45,11 +49,11 @@ public:
     // Lucent scheme projects, leaving the blockers' hard shadows to the runtime.
     double densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
 
-    bool contains(const Vec3& p) const { return boundary_.contains(p); }
+    bool contains(const Vec3& p) const { return boundary().contains(p); }
     // The shading normal at p on the boundary's face: the runtime's, interpolated
     // from the corners (core/triangle_mesh.h).
     Vec3 shadingNormal(uint32_t face, const Vec3& p) const {
-        return interpolatedNormal(mesh_, cornerNormals_[face], face, p);
+        return interpolatedNormal(mesh_, cornerNormals_.get([this] { return cornerNormals(mesh_); })[face], face, p);
     }
     const std::vector<TriangleMesh>& blockerMeshes() const { return blockerMeshes_; }
     bool insideBlocker(const Vec3& p) const;
@@ -67,8 +71,8 @@ private:
     ObjectDesc desc_;
     TriangleMesh objectMesh_;  // only when placed
     TriangleMesh mesh_;
-    MeshRaycaster boundary_;
-    std::vector<std::array<Vec3, 3>> cornerNormals_;
+    Lazy<MeshRaycaster> boundary_;
+    Lazy<std::vector<std::array<Vec3, 3>>> cornerNormals_;
     std::unique_ptr<DensityField> density_;
     std::vector<MeshRaycaster> blockers_;
     std::vector<TriangleMesh> blockerMeshes_;

@@ -59,7 +59,7 @@ double sampleRadiusPixels(const std::vector<GpuObject>& objects, const ViewSetup
     double smallest = kInfinity;
     for (const GpuObject& o : objects) {
         if (o.opticallyThick || o.samples->size() == 0) continue;
-        const Vec3 centre = o.placement.point(o.boundary->bounds().center());
+        const Vec3 centre = o.placement.point(o.bounds.center());
         const double distance = std::max(glm::length(centre - Vec3(view.cameraPosition)), 1e-30);
         const double radius = o.samples->parameters().meanRadius * o.placement.scale;
         smallest = std::min(smallest, radius / (pixelPerDistance * distance));
@@ -85,7 +85,8 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     o.placement = object.placement;
     o.g = object.g;
     o.surface = object.surface;
-    o.boundary = std::make_unique<MeshRaycaster>(*object.mesh);
+    o.boundaryMesh = object.mesh;
+    o.bounds = object.mesh->bounds();
     for (const TriangleMesh* blocker : object.blockers) o.blockers.push_back(std::make_unique<GpuMesh>(*blocker));
     if (!object.blockers.empty() && object.samples->parameters.scheme == SampleScheme::Lucent)
         o.shadows = std::make_unique<BlockerShadows>(object.blockers);

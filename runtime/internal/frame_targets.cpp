@@ -6,6 +6,17 @@
 #include "runtime/internal/placement_uniforms.h"
 
 namespace lucent {
+namespace {
+
+// Whether p (object space) lies inside the object; its ray caster is built only
+// for a point inside its bounds.
+bool containsPoint(GpuObject& o, const Vec3& p) {
+    if (!o.bounds.contains(p)) return false;
+    if (!o.boundary) o.boundary = std::make_unique<MeshRaycaster>(*o.boundaryMesh);
+    return o.boundary->contains(p);
+}
+
+}  // namespace
 
 void TextureTarget::resize(int width, int height) {
     if (width == width_ && height == height_) return;
@@ -137,8 +148,8 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
     // A camera inside an object sees no front face in front of it: its rays start inside.
     bool cameraInside = false;
-    for (const GpuObject& o : frame.objects)
-        cameraInside = cameraInside || o.boundary->contains(o.placement.inversePoint(Vec3(view.cameraPosition)));
+    for (GpuObject& o : frame.objects)
+        cameraInside = cameraInside || containsPoint(o, o.placement.inversePoint(Vec3(view.cameraPosition)));
     glUniform1i(p.uniform("cameraInside"), cameraInside ? 1 : 0);
     glBindTextureUnit(0, back_.texture());
     glBindTextureUnit(1, host_.texture());
