@@ -19,9 +19,8 @@ using glm::vec4;
 // Shader storage buffer bindings.
 LUCENT_GPU_CONSTANT(kBindingSamples, 0)       // Sample[]: one object's samples
 LUCENT_GPU_CONSTANT(kBindingLights, 1)        // Light[]: the scene's lights
-LUCENT_GPU_CONSTANT(kBindingCoefficients, 2)  // float[]: SH coefficients [sample][channel][coefficient]
-LUCENT_GPU_CONSTANT(kBindingReceived, 3)      // Received[]: the cached light each sample receives
-LUCENT_GPU_CONSTANT(kBindingShadowViews, 4)   // mat4[]: view-projection of each blocker shadow layer
+LUCENT_GPU_CONSTANT(kBindingReceived, 2)      // Received[]: the cached light each sample receives
+LUCENT_GPU_CONSTANT(kBindingShadowViews, 3)   // mat4[]: view-projection of each blocker shadow layer
 
 // Texture units of the sample programs.
 LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the objects
@@ -30,6 +29,7 @@ LUCENT_GPU_CONSTANT(kUnitGridSource, 2)       // a multiple-scattering grid's so
 LUCENT_GPU_CONSTANT(kUnitGridExtinction, 3)   // and its extinction
 LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the two intervals inside the objects
 LUCENT_GPU_CONSTANT(kUnitGridRefraction, 5)   // a multiple-scattering grid's index and its gradient
+LUCENT_GPU_CONSTANT(kUnitCoefficients, 6)     // float texture buffer: SH coefficients [sample][channel][coefficient]
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)

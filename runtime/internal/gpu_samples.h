@@ -1,7 +1,7 @@
 #pragma once
-// A sample set on the GPU: the Sample records and SH coefficients of
-// gpu_layout.h in shader storage buffers, room for the light each sample
-// receives, and the slab table of its density; one point per sample.
+// A sample set on the GPU: the Sample records of gpu_layout.h in a shader
+// storage buffer, its SH coefficients in a texture buffer, room for the light
+// each sample receives, and the slab table of its density; one point per sample.
 #include <vector>
 
 #include "core/sample_set.h"
@@ -10,6 +10,12 @@
 
 namespace lucent {
 
+// Throws a lucent::Error when a set of this many samples does not fit this
+// OpenGL's limits (GL_MAX_TEXTURE_BUFFER_SIZE texels for the SH coefficients,
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes for the per-sample records): past
+// them a shader would read zeros, a silent black image.
+void checkGpuCapacity(size_t samples, size_t coefficientsPerSample, uint64_t maxTexels, uint64_t maxBlockBytes);
+
 class GpuSamples {
 public:
     explicit GpuSamples(const SampleSet& samples);
@@ -17,7 +23,7 @@ public:
     GpuSamples(const GpuSamples&) = delete;
     GpuSamples& operator=(const GpuSamples&) = delete;
 
-    // Binds the sample, coefficient and received-light buffers (gpu_layout.h).
+    // Binds the sample and received-light buffers and the coefficients (gpu_layout.h).
     void bind() const;
     // One point per sample (buffers bound).
     void draw() const;
@@ -34,7 +40,7 @@ public:
     const SlabTable& slabs() const { return slabs_; }
 
 private:
-    GLuint vao_ = 0, buffers_[3] = {0, 0, 0};
+    GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0;
     size_t count_ = 0;
     int shOrder_ = 0, channels_ = 1;
     SampleParameters parameters_;

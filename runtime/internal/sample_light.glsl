@@ -3,7 +3,9 @@
 #include "gpu_layout.h"
 layout(std430, binding = kBindingSamples) readonly buffer Samples { Sample samples[]; };
 layout(std430, binding = kBindingLights) readonly buffer Lights { Light lights[]; };
-layout(std430, binding = kBindingCoefficients) readonly buffer Coefficients { float sh[]; };
+// The SH coefficients, [sample][channel][coefficient], one float per texel (gpu_samples.h).
+uniform samplerBuffer coefficients;
+float shAt(int k) { return texelFetch(coefficients, k).r; }
 
 uniform int lightCount;
 uniform int shOrder;   // bands, at most 8
@@ -117,17 +119,17 @@ vec3 attenuation(int sampleIndex, vec3 worldDirection) {
             float kq = shNormalisation[l * l + l + m] * q;
             int plus = base + l * l + l + m, minus = base + l * l + l - m;
             if (m == 0) {
-                psi.r += sh[plus] * kq;
+                psi.r += shAt(plus) * kq;
                 if (channels == 3) {
-                    psi.g += sh[plus + n] * kq;
-                    psi.b += sh[plus + 2 * n] * kq;
+                    psi.g += shAt(plus + n) * kq;
+                    psi.b += shAt(plus + 2 * n) * kq;
                 }
             } else {
                 float c = kq * cm, s = kq * sm;
-                psi.r += sh[plus] * c + sh[minus] * s;
+                psi.r += shAt(plus) * c + shAt(minus) * s;
                 if (channels == 3) {
-                    psi.g += sh[plus + n] * c + sh[minus + n] * s;
-                    psi.b += sh[plus + 2 * n] * c + sh[minus + 2 * n] * s;
+                    psi.g += shAt(plus + n) * c + shAt(minus + n) * s;
+                    psi.b += shAt(plus + 2 * n) * c + shAt(minus + 2 * n) * s;
                 }
             }
         }

@@ -36,6 +36,7 @@ SamplePass::SamplePass(double cutoff)
     for (const GlProgram* p : {&scatterProgram_, &scatterSlabsProgram_, &receivedProgram_}) {
         setShNormalisation(*p);
         glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
+        glProgramUniform1i(p->id(), p->uniform("coefficients"), GLint(gpu::kUnitCoefficients));
     }
 }
 

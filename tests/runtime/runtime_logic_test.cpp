@@ -1,6 +1,7 @@
 // The runtime's pure logic, tested without a GL context (Magnum's first tier):
 // the view setup against core's camera rays, shader source assembly, the sample
-// records against gpu_layout.h, the slab table, and the blocker shadow views.
+// records against gpu_layout.h, the slab table, the blocker shadow views, and
+// the sample counts a GL's limits hold.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -8,11 +9,13 @@
 #include <cmath>
 #include <cstddef>
 #include <map>
+#include <string>
 
 #include "core/camera_rays.h"
 #include "core/error.h"
 #include "runtime/internal/blocker_shadow_views.h"
 #include "runtime/internal/gpu_layout.h"
+#include "runtime/internal/gpu_samples.h"
 #include "runtime/internal/sample_packing.h"
 #include "runtime/scattering_renderer.h"
 #include "runtime/internal/shader_source.h"
@@ -26,6 +29,23 @@ glm::dvec2 projectToPixel(const ViewSetup& v, const Vec3& p) {
     const glm::dvec4 clip = glm::dmat4(v.projection) * glm::dmat4(v.view) * glm::dvec4(p, 1.0);
     const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
     return {(ndc.x + 1.0) * 0.5 * v.width, (1.0 - ndc.y) * 0.5 * v.height};
+}
+
+// Past GL_MAX_TEXTURE_BUFFER_SIZE a shader reads zeros: the set is refused
+// instead. The limits are llvmpipe's (2^27 texels, 2^27 bytes of storage block).
+TEST(GpuCapacity, RefusesSampleSetsPastTheGlLimitsAndTakesThoseAtThem) {
+    const uint64_t limit = uint64_t(1) << 27, plenty = uint64_t(1) << 40;
+    // Order 8, three channels: 192 coefficients a sample; 2^27 / 192 = 699 050.7.
+    EXPECT_NO_THROW(checkGpuCapacity(699050, 192, limit, plenty));
+    try {
+        checkGpuCapacity(699051, 192, limit, plenty);
+        ADD_FAILURE() << "699 051 samples of 192 coefficients passed a 2^27-texel limit";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--sh-order"), std::string::npos) << e.what();
+    }
+    // The 96-byte sample records: 2^27 / 96 = 1 398 101.3.
+    EXPECT_NO_THROW(checkGpuCapacity(1398101, 1, plenty, limit));
+    EXPECT_THROW(checkGpuCapacity(1398102, 1, plenty, limit), Error);
 }
 
 TEST(ViewSetup, ProjectsAlongCoreCameraRays) {
