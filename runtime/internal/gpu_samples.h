@@ -13,7 +13,7 @@ namespace lucent {
 // Throws a lucent::Error when a set of this many samples does not fit this
 // OpenGL's limits (GL_MAX_TEXTURE_BUFFER_SIZE texels for the SH coefficients,
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes for the per-sample records): past
-// them a shader would read zeros, a silent black image.
+// them what a shader reads is undefined.
 void checkGpuCapacity(size_t samples, size_t coefficientsPerSample, uint64_t maxTexels, uint64_t maxBlockBytes);
 
 class GpuSamples {
