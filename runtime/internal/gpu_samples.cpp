@@ -27,12 +27,12 @@ GpuSamples::GpuSamples(const SampleSet& samples)
     if (samples.shOrder > kMaxSampleShOrder)
         throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most " +
                     std::to_string(kMaxSampleShOrder));
-    const std::vector<gpu::Sample> packed = packSamples(samples);
     GLint maxTexels = 0;
     GLint64 maxBlockBytes = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
     checkGpuCapacity(count_, samples.coefficientsPerSample(), uint64_t(maxTexels), uint64_t(maxBlockBytes));
+    const std::vector<gpu::Sample> packed = packSamples(samples);
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);
     glNamedBufferStorage(buffers_[0], GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(gpu::Sample)),
@@ -42,7 +42,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
     glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * sizeof(gpu::Received)), nullptr, 0);
     // The coefficients are read through a texture buffer: llvmpipe gathers texel
     // fetches with vector instructions where it loads storage buffers lane by lane
-    // (the received light of 39 568 samples: 127 -> 55-64 ms), and the largest
+    // (the received light of 39 568 samples: 127 -> 55-64 ms), and its largest
     // texture buffer holds 4x what one storage block may (512 against 128 MB).
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &coefficientTexture_);
     glTextureBuffer(coefficientTexture_, GL_R32F, buffers_[1]);
