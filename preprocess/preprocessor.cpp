@@ -280,9 +280,9 @@ constexpr double kThinReach = 8.0;
 // Gaussians in a region less than kThinWidening Poisson radii across are widened
 // by kThinWidening radius / thickness, up to kMostWidening times. Measured
 // (docs/accuracy.md, Thin parts): a plate 1.2 radii thick went from 9.8% to
-// 4.1%; widening up to 6.5 radii across also helped a plate 3.9 radii thick
-// (5.8% -> 3.9%) but cost CGAL's elephant half a point.
-constexpr double kThinWidening = 3.0;
+// 4.1% at 3 radii; 5.5 radii also brought a plate 3.9 radii thick from 5.9% to
+// 3.5% for 0.3 points of CGAL's elephant (6.5 radii: 3.0% for 0.6 points).
+constexpr double kThinWidening = 5.5;
 constexpr double kMostWidening = 2.0;
 
 // The region's extent across position, along the line from its nearest

@@ -73,6 +73,14 @@ TEST(ThinParts, APlateAboutOneSampleRadiusThickMeetsTheGoal) {
     EXPECT_LT(errorOf(mesh, {"plate 0.012 thick", Vec3(0.8, 1.2, 4.5), Vec3(0.0)}, dir), 1.0);
 }
 
+// Four radii thick: below 5.5 radii across the Gaussians are widened too
+// (preprocess/preprocessor.cpp, kThinWidening); at 3 radii this plate was at 5.9%.
+TEST(ThinParts, APlateFourSampleRadiiThickMeetsTheGoal) {
+    test::ScratchDir dir;
+    const auto mesh = test::writeBox(dir, "plate.obj", Vec3(-1, -1, -0.03), Vec3(1, 1, 0.03));
+    EXPECT_LT(errorOf(mesh, {"plate 0.06 thick", Vec3(0.8, 1.2, 4.5), Vec3(0.0)}, dir), 1.0);
+}
+
 TEST(ThinParts, AThinTubeMeetsTheGoal) {
     test::ScratchDir dir;
     const auto mesh = dir.write("tube.obj", torusObj(0.8, 0.06, 256, 24));
