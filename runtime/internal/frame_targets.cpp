@@ -60,6 +60,10 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     segments_.resize(view.width, view.height);
     inside_.resize(view.width, view.height);
     reach_.resize(view.width, view.height);
+    // A camera inside an object sees no front face in front of it: its rays start inside.
+    cameraInside_ = false;
+    for (GpuObject& o : frame.objects)
+        cameraInside_ = cameraInside_ || containsPoint(o, o.placement.inversePoint(Vec3(view.cameraPosition)));
     glViewport(0, 0, view.width, view.height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -146,11 +150,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
     glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
-    // A camera inside an object sees no front face in front of it: its rays start inside.
-    bool cameraInside = false;
-    for (GpuObject& o : frame.objects)
-        cameraInside = cameraInside || containsPoint(o, o.placement.inversePoint(Vec3(view.cameraPosition)));
-    glUniform1i(p.uniform("cameraInside"), cameraInside ? 1 : 0);
+    glUniform1i(p.uniform("cameraInside"), cameraInside_ ? 1 : 0);
     glBindTextureUnit(0, back_.texture());
     glBindTextureUnit(1, host_.texture());
     glUniform1i(p.uniform("farthestBack"), 0);

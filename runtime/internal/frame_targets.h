@@ -57,6 +57,8 @@ public:
     // inside reach, 0 where the ray has none (segment.frag).
     GLuint reachDepth() const { return reach_.texture(); }
     GLuint emptyVertexArray() const { return emptyVao_; }
+    // Whether the camera of the last draw stands inside an object (then it sees back faces).
+    bool cameraInside() const { return cameraInside_; }
 
 private:
     GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
@@ -73,6 +75,7 @@ private:
     TextureTarget inside_{GL_RGBA32F};
     TextureTarget reach_{GL_DEPTH_COMPONENT32F};
     GLuint emptyVao_ = 0;
+    bool cameraInside_ = false;
 };
 
 }  // namespace lucent

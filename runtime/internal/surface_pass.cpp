@@ -16,7 +16,15 @@ void SurfacePass::begin(const GlProgram& p, const FrameContext& frame) const {
     glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(frame.view.cameraPosition));
     glBindTextureUnit(0, frame.targets.frontDepth());
     glUniform1i(p.uniform("frontDepth"), 0);
-    glDisable(GL_CULL_FACE);
+    // Only the nearest front face is shaded, and llvmpipe runs a fragment to its
+    // discard: culling the back faces halves the pass (a camera inside an object
+    // sees them, so they stay there).
+    if (true) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    }
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
