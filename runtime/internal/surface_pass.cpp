@@ -19,7 +19,7 @@ void SurfacePass::begin(const GlProgram& p, const FrameContext& frame) const {
     // Only the nearest front face is shaded, and llvmpipe runs a fragment to its
     // discard: culling the back faces halves the pass (a camera inside an object
     // sees them, so they stay there).
-    if (true) {
+    if (frame.targets.cameraInside()) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
