@@ -28,11 +28,15 @@ void writePfm(const std::filesystem::path& file, const Image& image) {
     AtomicFile out(file);
     auto& s = out.stream();
     s << "PF\n" << image.width << " " << image.height << "\n-1.0\n";  // negative scale: little endian
-    for (int y = image.height - 1; y >= 0; --y)                       // PFM stores rows bottom to top
+    // One write a row: a write a pixel took 35 ms of an 800x800 image.
+    std::vector<float> row(3 * size_t(image.width));
+    for (int y = image.height - 1; y >= 0; --y) {  // PFM stores rows bottom to top
         for (int x = 0; x < image.width; ++x) {
             const glm::vec3 c = sanitized(image.at(x, y));
-            s.write(reinterpret_cast<const char*>(&c[0]), 3 * sizeof(float));
+            std::copy(&c[0], &c[0] + 3, row.begin() + 3 * x);
         }
+        s.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+    }
     out.commit();
 }
 
