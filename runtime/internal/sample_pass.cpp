@@ -33,11 +33,29 @@ void setShNormalisation(const GlProgram& program) {
 SamplePass::SamplePass(double cutoff)
     : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))),
       keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {
-    for (const GlProgram* p : {&scatterProgram_, &scatterSlabsProgram_, &receivedProgram_}) {
-        setShNormalisation(*p);
-        glProgramUniform1i(p->id(), p->uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
-        glProgramUniform1i(p->id(), p->uniform("coefficients"), GLint(gpu::kUnitCoefficients));
+    setSampleUnits(receivedProgram_);
+}
+
+void SamplePass::setSampleUnits(const GlProgram& p) {
+    setShNormalisation(p);
+    glProgramUniform1i(p.id(), p.uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
+    glProgramUniform1i(p.id(), p.uniform("coefficients"), GLint(gpu::kUnitCoefficients));
+}
+
+const GlProgram& SamplePass::scatterProgram(bool slabs, bool countUseful) const {
+    std::unique_ptr<GlProgram>& program = scatterPrograms_[slabs][countUseful];
+    if (!program) {
+        std::vector<std::string> defines;
+        if (slabs) defines.push_back("DENSITY_SLABS");
+        if (countUseful) defines.push_back("COUNT_USEFUL_FRAGMENTS");
+        program = std::make_unique<GlProgram>(
+            std::initializer_list<GlProgram::Stage>{{GL_VERTEX_SHADER, "scatter.vert"},
+                                                    {GL_GEOMETRY_SHADER, "scatter.geom"},
+                                                    {GL_FRAGMENT_SHADER, "scatter.frag"}},
+            defines);
+        setSampleUnits(*program);
     }
+    return *program;
 }
 
 void SamplePass::prepare(FrameContext& frame) {
@@ -48,26 +66,25 @@ void SamplePass::prepare(FrameContext& frame) {
         }
 }
 
-void SamplePass::setFrameUniforms(const FrameContext& frame) const {
+void SamplePass::setFrameUniforms(const GlProgram& program, const FrameContext& frame) const {
     const ViewSetup& view = *frame.scatterView;
     // View-space direction through pixel (x, y) at z = -1 for this projection.
     const glm::mat4& P = view.projection;
     const glm::vec4 pixelToView(2.0f / (view.width * P[0][0]), 2.0f / (view.height * P[1][1]),
                                 (P[2][0] - 1.0f) / P[0][0], (P[2][1] - 1.0f) / P[1][1]);
-    for (const GlProgram* program : {&scatterProgram_, &scatterSlabsProgram_}) {
-        const GLuint id = program->id();
-        glProgramUniformMatrix4fv(id, program->uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
-        glProgramUniformMatrix4fv(id, program->uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
-        glProgramUniform3fv(id, program->uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
-        glProgramUniform4fv(id, program->uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
-        glProgramUniform1i(id, program->uniform("lightCount"), frame.lights.count);
-        glProgramUniform1f(id, program->uniform("cutoffSigmas"), float(cutoffSigmas_));
-        glProgramUniform1f(id, program->uniform("keptMassInverse"), float(keptMassInverse_));
-        glProgramUniform1f(id, program->uniform("discardBelow"), frame.options.discardBelow);
-        glProgramUniform1f(id, program->uniform("extinctionScale"), frame.options.extinctionScale);
-        glProgramUniform1i(id, program->uniform("raySegments"), GLint(gpu::kUnitRaySegments));
-        glProgramUniform1i(id, program->uniform("insideSegments"), GLint(gpu::kUnitInsideSegments));
-    }
+    const GLuint id = program.id();
+    glProgramUniformMatrix4fv(id, program.uniform("view"), 1, GL_FALSE, glm::value_ptr(view.view));
+    glProgramUniformMatrix4fv(id, program.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
+    glProgramUniform3fv(id, program.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
+    glProgramUniform4fv(id, program.uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
+    glProgramUniform1i(id, program.uniform("lightCount"), frame.lights.count);
+    glProgramUniform1f(id, program.uniform("cutoffSigmas"), float(cutoffSigmas_));
+    glProgramUniform1f(id, program.uniform("keptMassInverse"), float(keptMassInverse_));
+    if (frame.options.discardBelow > 0.0f)
+        glProgramUniform1f(id, program.uniform("discardBelow"), frame.options.discardBelow);
+    glProgramUniform1f(id, program.uniform("extinctionScale"), frame.options.extinctionScale);
+    glProgramUniform1i(id, program.uniform("raySegments"), GLint(gpu::kUnitRaySegments));
+    glProgramUniform1i(id, program.uniform("insideSegments"), GLint(gpu::kUnitInsideSegments));
 }
 
 // Isotropic media: the received light does not depend on the view, so it is
@@ -95,7 +112,6 @@ void SamplePass::draw(FrameContext& frame) {
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    setFrameUniforms(frame);
     // The proxies go to the pass's own target at the scattering's resolution,
     // depth-tested against the reach of each pixel (FrameTargets::reachDepth):
     // fragments beyond the objects or beside them are rejected before shading.
@@ -121,7 +137,8 @@ void SamplePass::draw(FrameContext& frame) {
     const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
-        const GlProgram& p = slabs.empty() ? scatterProgram_ : scatterSlabsProgram_;
+        const GlProgram& p = scatterProgram(!slabs.empty(), frame.options.discardBelow > 0.0f);
+        setFrameUniforms(p, frame);
         setSamplePlacement(p, o.placement);
         setSamplePlacement(receivedProgram_, o.placement);
         const glm::vec3 objectCamera(o.placement.inversePoint(Vec3(frame.view.cameraPosition)));

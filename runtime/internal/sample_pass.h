@@ -7,6 +7,8 @@
 // (proxies beyond it are rejected before shading), and is then added to the
 // host's framebuffer (add_light.frag), or upsampled along the objects' depth
 // when the scattering is reduced (upsample.frag).
+#include <memory>
+
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/render_pass.h"
@@ -21,7 +23,8 @@ public:
     void draw(FrameContext& frame) override;
 
 private:
-    void setFrameUniforms(const FrameContext& frame) const;
+    void setFrameUniforms(const GlProgram& program, const FrameContext& frame) const;
+    static void setSampleUnits(const GlProgram& program);  // SH normalisation and texture units
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
     void upsample(const FrameContext& frame) const;
     void addLight(const FrameContext& frame) const;
@@ -31,12 +34,12 @@ private:
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
     // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
     double keptMassInverse_;
-    GlProgram scatterProgram_{
-        {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}}};
-    // The same for objects of constant-density slabs (scatter.frag's table).
-    GlProgram scatterSlabsProgram_{
-        {{GL_VERTEX_SHADER, "scatter.vert"}, {GL_GEOMETRY_SHADER, "scatter.geom"}, {GL_FRAGMENT_SHADER, "scatter.frag"}},
-        {"DENSITY_SLABS"}};
+    // The scattering program for objects with constant-density slabs or not
+    // (scatter.frag's table), counting useful fragments or not (the render
+    // benchmark's diagnostic): each compiled the first time a frame needs it, as
+    // llvmpipe runs every branch a program holds, taken or not.
+    const GlProgram& scatterProgram(bool slabs, bool countUseful) const;
+    mutable std::unique_ptr<GlProgram> scatterPrograms_[2][2];
     GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};

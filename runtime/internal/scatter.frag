@@ -25,7 +25,9 @@ uniform vec3 objectCamera;
 uniform mat3 viewToObject;
 uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
 uniform int channels;           // 1: one gradient serves all three channels
-uniform float discardBelow;     // diagnostics only (render benchmark): 0 in normal use
+#ifdef COUNT_USEFUL_FRAGMENTS
+uniform float discardBelow;     // diagnostics only (the render benchmark's useful fragments)
+#endif
 #ifdef DENSITY_SLABS
 // The density slabs along regionAxis (runtime/scattering_pass.h), when sigma_t is
 // constant in each: [lo, hi] and sigma_t. Compiled only into the program for
@@ -55,10 +57,14 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
     float k = 1.0 / (sqrt(2.0) * s);
     float a = (t0 - tc) * k, b = (t1 - tc) * k;
     float e = logAmplitude - 0.5 * h2 / (s * s);
-    float value;
-    if (a >= 0.0) value = erfcScaled(a) * exp(e - a * a) - erfcScaled(b) * exp(e - b * b);
-    else if (b <= 0.0) value = erfcScaled(-b) * exp(e - b * b) - erfcScaled(-a) * exp(e - a * a);
-    else value = exp(min(e, 80.0)) * (2.0 - erfcScaled(-a) * exp(-a * a) - erfcScaled(b) * exp(-b * b));
+    // With E(x) = exp(e) erfc(|x|): E(a) - E(b) when the interval lies past the
+    // centre (a >= 0), E(b) - E(a) when before it (b <= 0), and 2 exp(e) - E(a) - E(b)
+    // when it holds it (there exp(e) stops at e^80). One erfc per end chosen by
+    // selects: llvmpipe runs every branch of an if, and three of them cost six.
+    bool holds = a < 0.0 && b > 0.0;
+    float ee = holds ? min(e, 80.0) : e;
+    float ea = erfcScaled(abs(a)) * exp(ee - a * a), eb = erfcScaled(abs(b)) * exp(ee - b * b);
+    float value = a >= 0.0 ? ea - eb : (b <= 0.0 ? eb - ea : 2.0 * exp(min(e, 80.0)) - ea - eb);
     return s * sqrt(0.5 * 3.14159265358979) * max(value, 0.0);
 }
 
@@ -151,9 +157,10 @@ void main() {
     } else {
         integral.gb = integral.rr;
     }
+#ifdef COUNT_USEFUL_FRAGMENTS
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
-    if (discardBelow > 0.0 && gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) <
-                                  discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
+    if (gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) < discardBelow * f.width * sqrt(2.0 * 3.14159265358979))
         discard;
+#endif
     colour = vec4(f.radiance * integral, 1.0);
 }
