@@ -1,5 +1,6 @@
 #include "core/sample_set.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include "core/error.h"
 #include "core/fingerprint.h"
 #include "core/input_file.h"
+#include "core/limits.h"
 
 static_assert(std::endian::native == std::endian::little, "the sample file is little endian; add byte swapping");
 
@@ -104,6 +106,11 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.putArray(s.boundary);
     w.putArray(s.sh);
     w.putArray(s.truncationError);
+    // The mesh in single precision: what it was read as (OpenMesh's points are floats).
+    w.put(uint64_t(s.mesh.positions.size()));
+    w.put(uint64_t(s.mesh.triangles.size()));
+    for (const Vec3& p : s.mesh.positions) w.put(glm::vec3(p));
+    w.putArray(s.mesh.triangles);
     Fingerprint checksum;
     checksum.addBytes(w.bytes.data(), w.bytes.size());
     w.put(checksum.value());
@@ -169,10 +176,12 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     if (p.regionAxis > kNoRegionAxis) throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
     // The counts fix the size: check it before allocating anything they claim.
     const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
-    const uint64_t expected = r.offset() + count * perSample + sizeof(uint64_t);
-    if (count > (uint64_t(1) << 40) / perSample || bytes.size() != expected)
-        throw Error(name, "sample file holds " + std::to_string(bytes.size()) + " bytes but its counts need " +
-                              std::to_string(expected) + " (truncated or corrupted)");
+    const uint64_t expected = r.offset() + count * perSample + 3 * sizeof(uint64_t);  // and the mesh's
+    auto sizeMismatch = [&](uint64_t need, const char* atLeast) {
+        return Error(name, "sample file holds " + std::to_string(bytes.size()) + " bytes but its counts need " + atLeast +
+                               std::to_string(need) + " (truncated or corrupted)");
+    };
+    if (count > (uint64_t(1) << 40) / perSample || bytes.size() < expected) throw sizeMismatch(expected, "at least ");
     s.positions = r.getArray<glm::vec3>(count);
     s.radii = r.getArray<float>(count);
     s.widths = r.getArray<float>(count);
@@ -183,6 +192,15 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
     s.boundary = r.getArray<BoundaryBall>(count);
     s.sh = r.getArray<float>(count * s.coefficientsPerSample());
     s.truncationError = r.getArray<float>(count);
+    const uint64_t vertices = r.get<uint64_t>(), triangles = r.get<uint64_t>();
+    const uint64_t meshBytes = bytes.size() - r.offset() - sizeof(uint64_t);
+    constexpr uint64_t kCorner = 3 * sizeof(float);
+    if (vertices > meshBytes / kCorner || triangles > meshBytes / kCorner ||
+        kCorner * (vertices + triangles) != meshBytes)
+        throw sizeMismatch(r.offset() + kCorner * (std::min(vertices, meshBytes) + std::min(triangles, meshBytes)) +
+                               sizeof(uint64_t), "");
+    const std::vector<glm::vec3> meshPositions = r.getArray<glm::vec3>(vertices);
+    s.mesh.triangles = r.getArray<std::array<uint32_t, 3>>(triangles);
     const size_t payload = r.offset();
     const uint64_t stored = r.get<uint64_t>();
     Fingerprint checksum;
@@ -192,6 +210,20 @@ SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& nam
         !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) || !allFinite(s.boundary) ||
         !allFinite(s.sh) || !allFinite(s.truncationError))
         throw Error(name, "sample file holds a non-finite value");
+    // The mesh: what every index and coordinate must be for the passes and ray
+    // casters that take it (its closedness was checked when it was read).
+    if ((vertices == 0) != (triangles == 0)) throw Error(name, "sample file holds a mesh without vertices or faces");
+    s.mesh.positions.reserve(vertices);
+    for (const glm::vec3& p : meshPositions) {
+        if (!isFinite(Vec3(p)) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+            throw Error(name, "sample file holds a mesh vertex that is not finite or lies beyond 1e13");
+        s.mesh.positions.push_back(Vec3(p));
+    }
+    for (const auto& t : s.mesh.triangles)
+        if (t[0] >= vertices || t[1] >= vertices || t[2] >= vertices)
+            throw Error(name, "sample file holds a mesh face with a vertex index out of range");
+    if (vertices > 0 && !(s.mesh.bounds().diagonal() >= kMinObjectSize))
+        throw Error(name, "sample file holds a mesh smaller than 1e-9 across");
     for (size_t i = 0; i < count; ++i)
     {
         if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f)) throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");

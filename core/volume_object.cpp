@@ -171,12 +171,17 @@ VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const Medi
     return VolumeObject(desc, std::move(mesh), std::move(blockers));
 }
 
-std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings) {
+std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings,
+                                      std::vector<TriangleMesh> checkedMeshes) {
     std::vector<VolumeObject> objects;
     objects.reserve(scene.objects.size());
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         try {
-            objects.emplace_back(scene.objects[i], warnings);
+            const ObjectDesc& desc = scene.objects[i];
+            if (i < checkedMeshes.size() && !checkedMeshes[i].triangles.empty())
+                objects.emplace_back(desc, std::move(checkedMeshes[i]), loadBlockers(desc, warnings));
+            else
+                objects.emplace_back(desc, warnings);
         } catch (const Error& e) {
             // Name the scene entry as well as the file that failed.
             throw Error(scene.file.string(), "/objects/" + std::to_string(i) + ": " + e.what());

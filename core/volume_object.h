@@ -86,7 +86,12 @@ inline Rgb transmittance(const Rgb& sigmaT, double path) {
     return glm::exp(-sigmaT * path);
 }
 
-std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings);
+// Loads every object of scene. Where checkedMeshes[i] holds faces, object i takes
+// that mesh (in its own space, already checked: from its sample file, whose
+// fingerprint matched) instead of reading its mesh file; its blockers and density
+// are read as always.
+std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings,
+                                      std::vector<TriangleMesh> checkedMeshes = {});
 
 // An object a host holds in memory, no files (a library's way in: preprocessObject
 // then makes its samples, translucentObjectFor hands both to the runtime). Its

@@ -160,6 +160,7 @@ SampleSet emptySetFor(const VolumeObject& object, const PreprocessSettings& sett
     set.shOrder = uint32_t(settings.shOrder);
     set.channels = channelsOf(object.desc().medium);
     set.sceneFingerprint = object.desc().fingerprint;
+    set.mesh = object.objectMesh();
     set.bounds = object.mesh().bounds();
     set.parameters.seed = settings.seed;
     set.parameters.meanRadius = float(r);

@@ -132,10 +132,12 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     s.boundary = {BoundaryBall{{0, 0, 1}, 0.3f, 0.2f, 0.6f}};
     for (int i = 0; i < 12; ++i) s.sh.push_back(0.01f * float(i));
     s.truncationError = {0.125f};
+    s.mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    s.mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     writeSampleFile(dir.path() / "s.lsf", s);
     const std::vector<char> b = bytesOf(dir.path() / "s.lsf");
     EXPECT_EQ(std::string(b.data(), 8), "LUCENTSF");
-    EXPECT_EQ(at<uint32_t>(b, 8), 5u);
+    EXPECT_EQ(at<uint32_t>(b, 8), 6u);
     EXPECT_EQ(at<uint64_t>(b, 12), 1u);
     EXPECT_EQ(at<uint32_t>(b, 20), 2u);
     EXPECT_EQ(at<uint32_t>(b, 24), 3u);
@@ -177,6 +179,14 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     o += 48;
     EXPECT_EQ(at<float>(b, o), 0.125f);         // truncation error
     o += 4;
+    EXPECT_EQ(at<uint64_t>(b, o), 4u);          // mesh vertices V
+    EXPECT_EQ(at<uint64_t>(b, o + 8), 4u);      // mesh faces T
+    o += 16;
+    EXPECT_EQ(at<float>(b, o + 3 * 12 + 8), 1.0f);  // the last vertex's z
+    o += 4 * 12;
+    EXPECT_EQ(at<uint32_t>(b, o + 4), 2u);          // the first face's second corner
+    EXPECT_EQ(at<uint32_t>(b, o + 3 * 12 + 8), 3u); // the last face's third corner
+    o += 4 * 12;
     ASSERT_EQ(b.size(), o + 8);
     EXPECT_EQ(at<uint64_t>(b, o), uint64_t(XXH3_64bits(b.data(), o)));  // of every byte before the checksum
 }

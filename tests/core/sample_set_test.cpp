@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <xxhash.h>
 
+#include <cmath>
 #include <cstring>
 
 #include <fstream>
@@ -83,6 +84,58 @@ TEST(SampleFile, RoundTrips) {
     EXPECT_EQ(r.bounds.max, Vec3(2));
     // No temporary file is left next to it.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+// A tetrahedron, outward.
+TriangleMesh tetrahedron() {
+    TriangleMesh m;
+    m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return m;
+}
+
+TEST(SampleFile, CarriesTheObjectsMesh) {
+    test::ScratchDir dir;
+    SampleSet s = makeSamples(3);
+    s.mesh = tetrahedron();
+    s.mesh.positions[1] = Vec3(double(0.1f), double(-2.5f), double(1e-7f));  // single-precision values survive
+    writeSampleFile(dir.path() / "s.lsf", s);
+    const SampleSet r = readSampleFile(dir.path() / "s.lsf");
+    EXPECT_EQ(r.mesh.positions, s.mesh.positions);
+    EXPECT_EQ(r.mesh.triangles, s.mesh.triangles);
+    EXPECT_EQ(r.positions, s.positions);
+}
+
+// The mesh's words patched, the checksum recomputed as a hostile writer would.
+TEST(SampleFile, RejectsAMeshThatCannotBeDrawn) {
+    test::ScratchDir dir;
+    SampleSet s = makeSamples(2);
+    s.mesh = tetrahedron();
+    writeSampleFile(dir.path() / "good.lsf", s);
+    const std::vector<char> bytes = bytesOf(dir.path() / "good.lsf");
+    // The file ends with 4 vertices (12 bytes each), 4 faces (12 bytes each) and the checksum.
+    const size_t faces = bytes.size() - 8 - 4 * 12, vertices = faces - 4 * 12;
+    auto patched = [&](const std::string& name, size_t offset, const void* value, size_t size) {
+        std::vector<char> b = bytes;
+        std::memcpy(b.data() + offset, value, size);
+        const uint64_t checksum = XXH3_64bits(b.data(), b.size() - 8);
+        std::memcpy(b.data() + b.size() - 8, &checksum, 8);
+        writeBytes(dir.path() / name, b);
+        return readError(dir.path() / name);
+    };
+    const uint32_t index = 4;
+    EXPECT_NE(patched("index.lsf", faces + 5 * 4, &index, 4).find("index.lsf: sample file holds a mesh face with a vertex index out of range"),
+              std::string::npos);
+    const float nan = std::nanf("");
+    EXPECT_NE(patched("nan.lsf", vertices + 4, &nan, 4).find("nan.lsf: sample file holds a mesh vertex that is not finite"),
+              std::string::npos);
+    const float far = 1e20f;
+    EXPECT_NE(patched("far.lsf", vertices, &far, 4).find("beyond 1e13"), std::string::npos);
+    // Counts that claim more than the file holds, or overflow when multiplied.
+    const uint64_t many = uint64_t(1) << 62;
+    EXPECT_NE(patched("many.lsf", vertices - 16, &many, 8).find("many.lsf: sample file holds"), std::string::npos);
+    const uint64_t zero = 0;
+    EXPECT_NE(patched("nofaces.lsf", vertices - 8, &zero, 8).find("counts need"), std::string::npos);
 }
 
 TEST(SampleFile, SkinsHoldNoSamples) {
