@@ -64,7 +64,7 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
     bool holds = a < 0.0 && b > 0.0;
     float ee = holds ? min(e, 80.0) : e;
     float ea = erfcScaled(abs(a)) * exp(ee - a * a), eb = erfcScaled(abs(b)) * exp(ee - b * b);
-    float value = a >= 0.0 ? ea - eb : (b <= 0.0 ? eb - ea : 2.0 * exp(min(e, 80.0)) - ea - eb);
+    float value = a >= 0.0 ? ea - eb : (b <= 0.0 ? eb - ea : 2.0 * exp(ee) - ea - eb);
     return s * sqrt(0.5 * 3.14159265358979) * max(value, 0.0);
 }
 
