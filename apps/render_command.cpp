@@ -16,7 +16,7 @@ namespace lucent {
 
 Command addRenderCommand(CLI::App& app) {
     struct Options {
-        std::string scene, output, method, backend;
+        std::string scene, output, method, backend, light = "traced";
         int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64, directions = 48, moments = 16;
         double noise = 0.0;
         std::string seed = "1";
@@ -36,6 +36,10 @@ Command addRenderCommand(CLI::App& app) {
     sub->add_option("--width", o->width, "Image width (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", o->height, "Image height (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_flag("--no-surface", o->noSurface, "Leave out the reflected surface term");
+    sub->add_option("--light", o->light,
+                    "Sample methods: the light reaching each sample traced through the objects (traced, default) or "
+                    "read from its SH attenuation (sh: the thesis; blurs narrow shadows, no shadows between objects)")
+        ->check(CLI::IsMember({"traced", "sh"}));
     sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
@@ -76,6 +80,7 @@ Command addRenderCommand(CLI::App& app) {
         settings.tolerance = o->tolerance;
         settings.threads = o->threads;
         settings.backend = o->backend;
+        settings.tracedLight = o->light == "traced";
         settings.samplesPerPixel = o->samples;
         settings.maxScatter = o->maxScatter;
         settings.gridResolution = o->grid;
@@ -83,7 +88,7 @@ Command addRenderCommand(CLI::App& app) {
         settings.moments = o->moments;
         settings.noiseTarget = o->noise;
         settings.seed = std::stoull(o->seed);
-        printWarnings(method.entry->create()->limitations(loaded));  // before the work, not after
+        printWarnings(method.entry->create()->limitations(loaded, settings));  // before the work, not after
         std::string servedBy;
         const Image image = renderWith(*method.entry, loaded, settings, &servedBy);
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);

@@ -51,6 +51,7 @@ const std::vector<Knob>& knobs() {
         {"width-factor", {1.0, 1.25, 1.5, 2.0, 2.5}, [](SweepSetting& s, double v) { s.preprocess.widthFactor = v; }},
         {"cutoff", {1e-1, 3e-2, 1e-2, 1e-3, 1e-4}, [](SweepSetting& s, double v) { s.cutoff = v; }},
         {"layer-spacing", {0.25, 0.5, 0.75, 1.0}, [](SweepSetting& s, double v) { s.preprocess.layerSpacing = v; }},
+        {"traced-light", {0, 1}, [](SweepSetting& s, double v) { s.tracedLight = v != 0.0; }},
     };
     return table;
 }
@@ -148,6 +149,7 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
             renderer.setLights(scene.lights);
             DrawOptions draw;
             draw.surface = false;
+            draw.tracedLight = setting.tracedLight;
             std::vector<double> times;
             for (int f = 0; f < options.warmup + options.frames; ++f) {
                 frame.bindAndClear();

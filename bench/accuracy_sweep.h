@@ -18,11 +18,12 @@ struct SweepSetting {
     std::string knob, value;
     PreprocessSettings preprocess;
     double cutoff = kDefaultGaussianCutoff;  // runtime: a Gaussian is drawn where it exceeds this fraction of its peak
+    bool tracedLight = true;                 // runtime: DrawOptions::tracedLight
 };
 
 // The knobs: samples, published (the thesis scheme against samples),
 // heuristic-directions, projection-directions, sh-order, width-factor, cutoff,
-// layer-spacing. Throws Error for an unknown name.
+// layer-spacing, traced-light (0: the SH, 1: traced). Throws Error for an unknown name.
 std::vector<std::string> accuracyKnobNames();
 std::vector<SweepSetting> accuracySweep(const std::vector<std::string>& knobs, const PreprocessSettings& base);
 

@@ -177,30 +177,37 @@ int main(int argc, char** argv) {
             renderers.back()->addObject(translucentObjectFor(object, samples));
             renderers.back()->setLights(lightsAround(lights, bounds));
         }
-        // Two cases: lights that stay put (an isotropic medium then reuses the light
-        // each sample receives) and lights that change every frame (recomputed).
-        std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size());
+        // Three cases: lights that stay put (an isotropic medium then reuses the light
+        // each sample receives, traced once), lights that change every frame read
+        // from the SH (what the viewer draws while a light is dragged), and lights
+        // that change every frame traced again each time.
+        std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size()),
+            traced(lightCounts.size());
         for (int round = 0; round < warmup + 2 * frames; ++round)
             for (size_t k = 0; k < lightCounts.size(); ++k)
-                for (bool move : {false, true}) {
-                    if (move) renderers[k]->setLights(lightsAround(lightCounts[k], bounds));
+                for (int kind = 0; kind < 3; ++kind) {
+                    if (kind > 0) renderers[k]->setLights(lightsAround(lightCounts[k], bounds));
+                    DrawOptions options;
+                    options.tracedLight = kind != 1;
                     frame.bindAndClear();
                     glFinish();
                     const auto start = std::chrono::steady_clock::now();
-                    renderers[k]->draw(view);
+                    renderers[k]->draw(view, options);
                     glFinish();
                     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                    if (round >= warmup) (move ? moving : still)[k].push_back(t);
+                    if (round >= warmup) (kind == 0 ? still : kind == 1 ? moving : traced)[k].push_back(t);
                 }
         std::printf("\n%zu samples, %d interleaved rounds:\n\n"
-                    "| lights | still lights: frame (ms) | vs 1 light | lights changing every frame: frame (ms) | vs 1 light |\n"
-                    "|---:|---:|---:|---:|---:|\n",
+                    "| lights | still lights: frame (ms) | vs 1 light | changing every frame, SH: frame (ms) | vs 1 "
+                    "light | changing every frame, traced: frame (ms) | vs 1 light |\n"
+                    "|---:|---:|---:|---:|---:|---:|---:|\n",
                     samples.size(), 2 * frames);
-        const double oneStill = median(still[0]), oneMoving = median(moving[0]);
+        const double oneStill = median(still[0]), oneMoving = median(moving[0]), oneTraced = median(traced[0]);
         for (size_t k = 0; k < lightCounts.size(); ++k) {
-            const double s = median(still[k]), m = median(moving[k]);
-            std::printf("| %d | %.1f | %+.1f%% | %.1f | %+.1f%% |\n", lightCounts[k], 1e3 * s,
-                        100.0 * (s / oneStill - 1.0), 1e3 * m, 100.0 * (m / oneMoving - 1.0));
+            const double s = median(still[k]), m = median(moving[k]), t = median(traced[k]);
+            std::printf("| %d | %.1f | %+.1f%% | %.1f | %+.1f%% | %.1f | %+.1f%% |\n", lightCounts[k], 1e3 * s,
+                        100.0 * (s / oneStill - 1.0), 1e3 * m, 100.0 * (m / oneMoving - 1.0), 1e3 * t,
+                        100.0 * (t / oneTraced - 1.0));
         }
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-render: error: %s\n", e.what());

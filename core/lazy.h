@@ -1,7 +1,7 @@
 #pragma once
 // A value built the first time it is asked for, once, from whichever thread asks
-// first; the owner stays movable. For what only some commands need: the render
-// command's ss never casts a ray into the mesh it draws.
+// first; the owner stays movable. For what only some commands need: ss with
+// --light sh never casts a ray into the mesh it draws.
 #include <memory>
 #include <mutex>
 #include <optional>

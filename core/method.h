@@ -29,6 +29,7 @@ struct MethodSettings {
     double tolerance = 1e-3; // quadrature methods: relative error target per pixel
     std::string backend;     // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
     double cutoff = kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
+    bool tracedLight = true;       // sample methods: each sample's light traced, not read from its SH (DrawOptions::tracedLight)
     int samplesPerPixel = 64;      // Monte Carlo methods: paths per pixel
     int maxScatter = 1 << 20;      // Monte Carlo methods: collisions per path (1: single scattering)
     double noiseTarget = 0.0;      // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
@@ -47,8 +48,8 @@ public:
     // What served the last render, for messages (an OpenGL backend, a device); may be empty.
     virtual std::string servedBy() const { return {}; }
     // What this method is known to get wrong about this scene, one line each
-    // (shown as warnings): the cases where it misses its accuracy goal.
-    virtual std::vector<std::string> limitations(const LoadedScene&) const { return {}; }
+    // (shown as warnings) with these settings: the cases where it misses its accuracy goal.
+    virtual std::vector<std::string> limitations(const LoadedScene&, const MethodSettings&) const { return {}; }
 };
 
 // One warning per object whose ior differs from 1, for a method that treats

@@ -4,8 +4,8 @@
 
 namespace lucent {
 
-std::vector<std::string> GridMethod::limitations(const LoadedScene& scene) const {
-    return SsMethod::sampleLimitations(scene);
+std::vector<std::string> GridMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
+    return SsMethod::sampleLimitations(scene, settings);
 }
 
 Image GridMethod::render(const LoadedScene& scene, const MethodSettings& settings) {

@@ -16,7 +16,7 @@ class GridMethod : public Method {
 public:
     Image render(const LoadedScene& scene, const MethodSettings& settings) final;
     std::string servedBy() const final { return servedBy_; }
-    std::vector<std::string> limitations(const LoadedScene& scene) const override;
+    std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
 
 protected:
     // One grid per object of the scene, in order, each reported on one line;

@@ -7,8 +7,8 @@
 
 namespace lucent {
 
-std::vector<std::string> LblMethod::limitations(const LoadedScene& scene) const {
-    std::vector<std::string> out = GridMethod::limitations(scene);
+std::vector<std::string> LblMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
+    std::vector<std::string> out = GridMethod::limitations(scene, settings);
     for (const VolumeObject& o : scene.objects) {
         const MediumDesc& m = o.desc().medium;
         if (m.ior != 1.0)

@@ -9,7 +9,7 @@ namespace lucent {
 
 class MdomMethod final : public GridMethod {
 public:
-    std::vector<std::string> limitations(const LoadedScene& scene) const override;
+    std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
 
 private:
     std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,

@@ -6,7 +6,7 @@
 
 namespace lucent {
 
-std::vector<std::string> PathMethod::limitations(const LoadedScene& scene) const {
+std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
     std::vector<std::string> out;
     const auto& objects = scene.objects;
     const bool refracting = std::any_of(objects.begin(), objects.end(),

@@ -18,7 +18,7 @@ namespace lucent {
 
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples) {
     TranslucentObject t{&object.objectMesh(), &samples, object.desc().medium.g, object.desc().surface, {},
-                        object.desc().medium.albedo, object.placement()};
+                        object.desc().medium.albedo, object.placement(), &object};
     for (const TriangleMesh& blocker : object.objectBlockerMeshes()) t.blockers.push_back(&blocker);
     return t;
 }
@@ -82,6 +82,8 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     GpuObject o;
     o.mesh = std::make_unique<GpuMesh>(*object.mesh);
     o.samples = std::make_unique<GpuSamples>(*object.samples);
+    o.sampleSet = object.samples;
+    o.volume = object.volume;
     o.placement = object.placement;
     o.g = object.g;
     o.surface = object.surface;
@@ -109,10 +111,17 @@ void ScatteringRenderer::removeObject(size_t index) {
     impl_->objects.erase(impl_->objects.begin() + long(index));
 }
 
-void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples) {
+void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, const VolumeObject* volume) {
     checkIndex("setSamples", index, impl_->objects.size());
     GpuObject& o = impl_->objects[index];
     o.samples = std::make_unique<GpuSamples>(samples);
+    o.sampleSet = &samples;
+    o.volume = volume;
+    // The other objects' light crosses this one's new medium.
+    for (GpuObject& other : impl_->objects) {
+        other.samples->tracedValid = false;
+        other.samples->receivedValid = false;
+    }
     o.opticallyThick = samples.parameters.scheme == SampleScheme::OpticallyThick;
     o.shadowsValid = false;
 }
@@ -127,6 +136,11 @@ void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement)
     o.placement = placement;
     o.samples->receivedValid = false;
     o.shadowsValid = false;
+    // The traced light of every object crosses this one.
+    for (GpuObject& other : impl_->objects) {
+        other.samples->tracedValid = false;
+        other.samples->receivedValid = false;
+    }
 }
 
 void ScatteringRenderer::addScatteringGrid(const ScatteringGrid& grid) { impl_->grids->add(grid); }
@@ -153,6 +167,7 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     g.lights = lights;
     for (GpuObject& o : impl_->objects) {
         o.samples->receivedValid = false;
+        o.samples->tracedValid = false;
         o.shadowsValid = false;
     }
 }

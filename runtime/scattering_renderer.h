@@ -30,6 +30,9 @@ struct TranslucentObject {
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
     Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
     Similarity placement;                // where the mesh, blockers and samples stand in the world
+    // The object's medium for tracing the light to each sample (DrawOptions::tracedLight),
+    // or null: the samples' SH alone. Must outlive the renderer.
+    const VolumeObject* volume = nullptr;
 };
 
 // A scene object with its sample set, as the renderer takes it (both must outlive
@@ -60,6 +63,13 @@ struct DrawOptions {
     // or 4), upsampled along the objects' depth: its cost falls by about k^2.
     // 0: the measured default (scatterScaleFor, docs/runtime.md).
     int scatterScale = 0;
+    // Each sample's light traced through the objects' volumes (TranslucentObject::volume)
+    // on the CPU, one ray per sample and light, when the lights or placements change;
+    // false: read from the SH expansion of its attenuation (thesis 3.3), which
+    // smears narrow shadows and does not see the other objects (docs/accuracy.md,
+    // traced light). Objects without a volume always read their SH, and so do
+    // those whose samples times lights, 16 bytes each, exceed one shader storage block.
+    bool tracedLight = true;
 };
 
 // The reduction DrawOptions::scatterScale 0 picks: the largest of 1, 2 and 4
@@ -86,8 +96,9 @@ public:
     // Removes object index; those after it move down by one.
     void removeObject(size_t index);
     // Gives object index new samples (its medium changed and it was preprocessed
-    // again, say); its mesh and placement stay.
-    void setSamples(size_t index, const SampleSet& samples);
+    // again, say) and the volume of that medium to trace its light through
+    // (TranslucentObject::volume; null: its SH); its mesh and placement stay.
+    void setSamples(size_t index, const SampleSet& samples, const VolumeObject* volume);
     size_t objectCount() const;
     // Moves, turns or scales object index (any similarity, every frame if need be:
     // nothing is uploaded; isotropic media recompute their samples' light once).

@@ -11,11 +11,11 @@ public:
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"
     // sampleLimitations, and boundaries taken as index-matched.
-    std::vector<std::string> limitations(const LoadedScene& scene) const override;
+    std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
     // Lights inside an object or within a sample spacing of its boundary, other
     // objects in a light's way, and Gaussians far wider or narrower than their
     // spacing (docs/accuracy.md, Extremes): what every method drawing the samples shares.
-    static std::vector<std::string> sampleLimitations(const LoadedScene& scene);
+    static std::vector<std::string> sampleLimitations(const LoadedScene& scene, const MethodSettings& settings);
 
 private:
     std::string backend_;

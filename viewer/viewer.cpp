@@ -275,6 +275,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         using Multiple = ViewerState::Multiple;
         Multiple gridsShown = Multiple::Off;
         bool gridsValid = false, solving = false;
+        bool changedBefore = false;  // the lights or placements changed in the last frame
         std::string solveStatus;
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
@@ -325,6 +326,10 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 frameHeight = fbHeight;
                 state.camera.resize(viewWidth, fbHeight);
             }
+            // Changed this frame and the one before: being dragged.
+            const bool changed = state.lightsChanged || state.placementsChanged;
+            const bool dragged = changed && changedBefore;
+            changedBefore = changed;
             if (state.lightsChanged) {
                 renderer.setLights(state.lights);
                 state.lightsChanged = false;
@@ -414,6 +419,10 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             drawOptions.surface = state.surface;
             drawOptions.scattering = state.scattering;
             drawOptions.extinctionScale = state.extinctionScale;
+            // A light or object being dragged changes every frame: tracing each
+            // sample's light anew would cost 60-100 ms a frame (docs/runtime.md),
+            // so the SH serve until it holds still.
+            drawOptions.tracedLight = state.tracedLight && !dragged;
             renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
             glFinish();
             frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -461,6 +470,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 ImGui::Checkbox("surface", &state.surface);
                 ImGui::SameLine();
                 ImGui::Checkbox("scattering", &state.scattering);
+                ImGui::SameLine();
+                ImGui::Checkbox("traced light", &state.tracedLight);
 #ifdef LUCENT_HAVE_OPENCL
                 int multiple = int(state.multiple);
                 ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");

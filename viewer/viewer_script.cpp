@@ -154,6 +154,8 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         state.panel = onOff(in, where);
     } else if (command == "surface") {
         state.surface = onOff(in, where);
+    } else if (command == "traced") {
+        state.tracedLight = onOff(in, where);
     } else if (command == "multiple") {
         std::string which;
         in >> which;

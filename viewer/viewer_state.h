@@ -23,6 +23,9 @@ struct ViewerState {
     bool placementsChanged = false;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
+    // Each sample's light traced through the objects (DrawOptions::tracedLight),
+    // once the lights and objects hold still; while they move, read from the SH.
+    bool tracedLight = true;
     // Multiple scattering added by a hybrid's grids, solved again when the
     // lights change: lbl (docs/hybrid.md) at once, mdom (docs/mdom.md) one
     // iteration per frame, each shown as it comes.

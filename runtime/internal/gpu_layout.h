@@ -21,6 +21,7 @@ LUCENT_GPU_CONSTANT(kBindingSamples, 0)       // Sample[]: one object's samples
 LUCENT_GPU_CONSTANT(kBindingLights, 1)        // Light[]: the scene's lights
 LUCENT_GPU_CONSTANT(kBindingReceived, 2)      // Received[]: the cached light each sample receives
 LUCENT_GPU_CONSTANT(kBindingShadowViews, 3)   // mat4[]: view-projection of each blocker shadow layer
+LUCENT_GPU_CONSTANT(kBindingTracedDepths, 4)  // vec4[sample][light]: traced optical depths (traced_light.h)
 
 // Texture units of the sample programs.
 LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the objects

@@ -32,6 +32,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
     checkGpuCapacity(count_, samples.coefficientsPerSample(), uint64_t(maxTexels), uint64_t(maxBlockBytes));
+    maxBlockBytes_ = uint64_t(maxBlockBytes);
     const std::vector<gpu::Sample> packed = packSamples(samples);
     glCreateVertexArrays(1, &vao_);
     glCreateBuffers(3, buffers_);
@@ -51,6 +52,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
 GpuSamples::~GpuSamples() {
     glDeleteTextures(1, &coefficientTexture_);
     glDeleteBuffers(3, buffers_);
+    if (tracedBuffer_) glDeleteBuffers(1, &tracedBuffer_);
     glDeleteVertexArrays(1, &vao_);
 }
 
@@ -58,6 +60,14 @@ void GpuSamples::bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingSamples, buffers_[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingReceived, buffers_[2]);
     glBindTextureUnit(gpu::kUnitCoefficients, coefficientTexture_);
+    if (tracedBuffer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingTracedDepths, tracedBuffer_);
+}
+
+void GpuSamples::setTracedDepths(const std::vector<glm::vec4>& depths) {
+    if (!tracedBuffer_) glCreateBuffers(1, &tracedBuffer_);
+    glNamedBufferData(tracedBuffer_, GLsizeiptr(std::max<size_t>(depths.size(), 1) * sizeof(glm::vec4)),
+                      depths.empty() ? nullptr : depths.data(), GL_STATIC_DRAW);
+    tracedValid = true;
 }
 
 void GpuSamples::draw() const {

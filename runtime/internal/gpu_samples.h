@@ -4,6 +4,8 @@
 // each sample receives, and the slab table of its density; one point per sample.
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/sample_set.h"
 #include "runtime/internal/gl.h"
 #include "runtime/internal/sample_packing.h"
@@ -32,6 +34,14 @@ public:
     // Whether the received-light buffer holds the light of the current lights and scale.
     bool receivedValid = false;
     float receivedScale = 0.0f;
+    bool receivedTraced = false;  // whether it was computed from the traced depths
+    // The traced optical depths of runtime/internal/traced_light.h, bound at
+    // kBindingTracedDepths; tracedValid while they hold the current lights and placements.
+    void setTracedDepths(const std::vector<glm::vec4>& depths);
+    bool tracedValid = false;
+    // Whether the depths for this many lights fit one shader storage block (past
+    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE a shader reads undefined values).
+    bool tracedDepthsFit(int lights) const { return uint64_t(count_) * uint64_t(lights) * 16u <= maxBlockBytes_; }
     int shOrder() const { return shOrder_; }
     int channels() const { return channels_; }
     size_t size() const { return count_; }
@@ -40,8 +50,9 @@ public:
     const SlabTable& slabs() const { return slabs_; }
 
 private:
-    GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0;
+    GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0, tracedBuffer_ = 0;
     size_t count_ = 0;
+    uint64_t maxBlockBytes_ = 0;
     int shOrder_ = 0, channels_ = 1;
     SampleParameters parameters_;
     bool homogeneous_ = true;

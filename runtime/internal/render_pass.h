@@ -26,6 +26,8 @@ class FrameTargets;
 struct GpuObject {
     std::unique_ptr<GpuMesh> mesh;
     std::unique_ptr<GpuSamples> samples;
+    const SampleSet* sampleSet = nullptr;  // the caller's, which samples holds on the GPU
+    const VolumeObject* volume = nullptr;  // TranslucentObject::volume
     Similarity placement;  // object to world; mesh, blockers and samples stay in object space
     double g = 0.0;
     std::optional<SurfaceDesc> surface;

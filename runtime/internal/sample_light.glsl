@@ -75,6 +75,12 @@ float blockerVisibility(int j, vec3 x) {
     }
     return mix(mix(lit[0], lit[1], f.x), mix(lit[2], lit[3], f.x), f.y);
 }
+// The optical depth to each light traced on the CPU (runtime/internal/traced_light.h),
+// [sample][light], in world units before extinctionScale; w = 1: a blocker is in the way.
+// It replaces psi_i's SH and the blocker shadows.
+uniform bool tracedLight;
+layout(std430, binding = kBindingTracedDepths) readonly buffer TracedDepths { vec4 tracedDepths[]; };
+
 uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
 // Distance, in object units, out of the sample's boundary ball along d (object space) (preprocess/sh_projection.cpp,
@@ -200,10 +206,16 @@ Received receivedLight(int i, vec3 toCamera) {
         } else {
             toLight = -lights[j].position.xyz;
         }
-        irradiance *= blockerVisibility(j, centre);
+        vec3 psi;
+        if (tracedLight) {
+            vec4 traced = tracedDepths[i * lightCount + j];
+            psi = traced.w > 0.5 ? vec3(0.0) : exp(-extinctionScale * traced.rgb);
+        } else {
+            irradiance *= blockerVisibility(j, centre);
+        }
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
+        if (!tracedLight) psi = attenuation(i, toLight);
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
-        vec3 psi = attenuation(i, toLight);
         vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;
         received += light;

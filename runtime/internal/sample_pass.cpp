@@ -8,6 +8,7 @@
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gpu_layout.h"
 #include "runtime/internal/placement_uniforms.h"
+#include "runtime/internal/traced_light.h"
 
 namespace lucent {
 namespace {
@@ -58,12 +59,23 @@ const GlProgram& SamplePass::scatterProgram(bool slabs, bool countUseful) const 
     return *program;
 }
 
+bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {
+    return frame.options.tracedLight && o.volume && !o.opticallyThick && frame.lights.count > 0 &&
+           o.samples->tracedDepthsFit(frame.lights.count);
+}
+
 void SamplePass::prepare(FrameContext& frame) {
-    for (GpuObject& o : frame.objects)
-        if (o.shadows && !o.shadowsValid) {
+    std::vector<TracedVolume> volumes;
+    for (const GpuObject& o : frame.objects)
+        if (o.volume) volumes.push_back({o.volume, o.placement});
+    for (GpuObject& o : frame.objects) {
+        if (traced(o, frame) && !o.samples->tracedValid)
+            o.samples->setTracedDepths(tracedOpticalDepths(volumes, *o.sampleSet, o.placement, frame.lights.lights));
+        if (o.shadows && !o.shadowsValid && !traced(o, frame)) {
             o.shadows->render(frame.lights.lights, o.placement);
             o.shadowsValid = true;
         }
+    }
 }
 
 void SamplePass::setFrameUniforms(const GlProgram& program, const FrameContext& frame) const {
@@ -91,7 +103,9 @@ void SamplePass::setFrameUniforms(const GlProgram& program, const FrameContext& 
 // computed when the lights or the medium scale change, not every frame.
 void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     const float scale = frame.options.extinctionScale;
-    if (o.samples->receivedValid && o.samples->receivedScale == scale) return;
+    const bool tracedLight = traced(o, frame);
+    if (o.samples->receivedValid && o.samples->receivedScale == scale && o.samples->receivedTraced == tracedLight)
+        return;
     const GlProgram& c = receivedProgram_;
     glUseProgram(c.id());
     glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
@@ -103,6 +117,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     o.samples->computeReceived();
     o.samples->receivedValid = true;
     o.samples->receivedScale = scale;
+    o.samples->receivedTraced = tracedLight;
 }
 
 void SamplePass::draw(FrameContext& frame) {
@@ -147,8 +162,10 @@ void SamplePass::draw(FrameContext& frame) {
         glProgramUniformMatrix3fv(p.id(), p.uniform("viewToObject"), 1, GL_FALSE, glm::value_ptr(viewToObject));
         o.samples->bind();
         if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
-        for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&receivedProgram_)})
+        for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&receivedProgram_)}) {
             glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
+            glProgramUniform1i(program->id(), program->uniform("tracedLight"), traced(o, frame) ? 1 : 0);
+        }
         const bool cache = o.g == 0.0;
         if (cache) updateReceived(o, frame);
         glUseProgram(p.id());

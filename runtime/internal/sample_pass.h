@@ -25,6 +25,8 @@ public:
 private:
     void setFrameUniforms(const GlProgram& program, const FrameContext& frame) const;
     static void setSampleUnits(const GlProgram& program);  // SH normalisation and texture units
+    // Whether object o's samples take their light traced this frame (DrawOptions::tracedLight).
+    static bool traced(const GpuObject& o, const FrameContext& frame);
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
     void upsample(const FrameContext& frame) const;
     void addLight(const FrameContext& frame) const;

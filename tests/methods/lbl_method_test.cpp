@@ -73,12 +73,12 @@ TEST(MdomMethod, WarnsWhereItMissesTheGoal) {
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.8)};
     scene.objects[0].medium.g = 0.9;
     const LoadedScene loaded = loadScene(scene, false);
-    const auto warnings = findMethod("mdom").create()->limitations(loaded);
+    const auto warnings = findMethod("mdom").create()->limitations(loaded, MethodSettings{});
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("|g| > 0.8"), std::string::npos) << warnings[0];
     EXPECT_EQ(warnings[0].find('\n'), std::string::npos);
     scene.objects[0].medium.g = 0.8;
-    EXPECT_TRUE(findMethod("mdom").create()->limitations(loadScene(scene, false)).empty());
+    EXPECT_TRUE(findMethod("mdom").create()->limitations(loadScene(scene, false), MethodSettings{}).empty());
 }
 
 TEST(LblMethod, AddsNothingWhereNothingScattersTwice) {

@@ -187,7 +187,7 @@ bool ssWarns(const Case& c, const std::string& words) {
     expectFiniteAndNonNegative(r.ss, "ss");
     expectFiniteAndNonNegative(r.reference, "reference");
     const LoadedScene loaded = loadScene(r.scene, true);
-    for (const std::string& line : SsMethod().limitations(loaded))
+    for (const std::string& line : SsMethod().limitations(loaded, MethodSettings{}))
         if (line.find(words) != std::string::npos) return true;
     return false;
 }

@@ -51,7 +51,7 @@ TEST(RendererObjects, RemovingAndGivingNewSamplesMatchARendererBuiltThatWay) {
     changing.removeObject(0);
     EXPECT_EQ(changing.objectCount(), 1u);
     const Image removed = draw(changing);
-    changing.setSamples(0, samples[2]);  // the right box's medium made denser, preprocessed again
+    changing.setSamples(0, samples[2], &objects[2]);  // the right box's medium made denser, preprocessed again
     const Image updated = draw(changing);
     EXPECT_THROW(changing.removeObject(1), Error);
 

@@ -145,7 +145,10 @@ TEST(SingleScattering, ErrorFallsWithSamplesAndShOrder) {
 
 // Two objects in one scene: each with its own samples, and each shadowing the
 // other's light (the reference attenuates through every object). Held to the
-// goal of the sphere at sigma_t 2 (tests/runtime/ss_goal.h: relative RMSE <= 10%).
+// goal of the sphere at sigma_t 2 (tests/runtime/ss_goal.h: relative RMSE <= 10%),
+// lit from between them and through one onto the other: traced light crosses
+// both. The SH hold only an object's own attenuation, so --light sh misses the
+// goal there (24% measured) and says so before rendering.
 TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
     test::ScratchDir dir;
     // The unit sphere moved 2.5 along x.
@@ -183,17 +186,31 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
     for (const VolumeObject& o : objects) writeSampleFile(o.desc().samples, preprocessObject(o, settings));
     ReferenceSettings reference;
     reference.surface = false;
-    const ImageError e = compareImages(test::renderSs(scene, false), ReferenceRenderer(scene, objects).render(reference));
-    std::printf("two spheres: relative RMSE %.4f, mean ratio %.4f\n", e.relativeRmse, e.meanRatio);
-    EXPECT_GT(e.pixels, 800u);
-    EXPECT_LT(e.relativeRmse, test::ssGoalRelativeRmse(objects));
-    // Neither lies in the other's light: no warning. Moved to the right, the light
-    // shines through one sphere onto the other, which ss cannot dim: it says so.
-    EXPECT_TRUE(SsMethod().limitations(loadScene(scene, false)).empty());
-    scene.lights[0].position = Vec3(5.0, 0.3, 0.2);
-    const std::vector<std::string> said = SsMethod().limitations(loadScene(scene, false));
-    ASSERT_EQ(said.size(), 1u);
-    EXPECT_NE(said[0].find("object 'right' may lie between light 0 and object 'left'"), std::string::npos) << said[0];
+    const double goal = test::ssGoalRelativeRmse(objects);
+    MethodSettings sh;
+    sh.tracedLight = false;
+    for (const Vec3& at : {Vec3(1.25, 4.0, 3.0), Vec3(5.0, 0.3, 0.2)}) {
+        scene.lights[0].position = at;
+        const bool between = at.x > 2.5;
+        const Image exact = ReferenceRenderer(scene, objects).render(reference);
+        const ImageError traced = compareImages(test::renderSs(scene, false), exact);
+        const ImageError fromSh = compareImages(test::renderSs(scene, false, "", false), exact);
+        std::printf("two spheres, light at x %.2f: relative RMSE traced %.4f, sh %.4f\n", at.x, traced.relativeRmse,
+                    fromSh.relativeRmse);
+        EXPECT_GT(traced.pixels, 800u);
+        EXPECT_LT(traced.relativeRmse, goal) << "light at x " << at.x;
+        EXPECT_TRUE(SsMethod().limitations(loadScene(scene, false), MethodSettings{}).empty());
+        const std::vector<std::string> said = SsMethod().limitations(loadScene(scene, false), sh);
+        if (!between) {
+            EXPECT_LT(fromSh.relativeRmse, goal) << "neither shadows the other";
+            EXPECT_TRUE(said.empty());
+            continue;
+        }
+        // Through the right sphere onto the left: the scene does test the shadow.
+        EXPECT_GT(fromSh.relativeRmse, goal) << "the SH cannot dim one object's light by another";
+        ASSERT_EQ(said.size(), 1u);
+        EXPECT_NE(said[0].find("object 'right' may lie between light 0 and object 'left'"), std::string::npos) << said[0];
+    }
 }
 
 TEST(SingleScattering, OsmesaAndEglGiveTheSameImage) {

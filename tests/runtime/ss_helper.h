@@ -12,11 +12,13 @@
 
 namespace lucent::test {
 
-inline Image renderSs(const SceneDesc& scene, bool surface = true, const std::string& backend = "") {
+inline Image renderSs(const SceneDesc& scene, bool surface = true, const std::string& backend = "",
+                      bool tracedLight = true) {
     const LoadedScene loaded = loadScene(scene, true);
     MethodSettings settings;
     settings.surface = surface;
     settings.backend = backend;
+    settings.tracedLight = tracedLight;
     return SsMethod().render(loaded, settings);
 }
 

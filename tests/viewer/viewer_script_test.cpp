@@ -41,6 +41,9 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     applyScriptLine(state, "surface off", "s:7");
     applyScriptLine(state, "scattering off", "s:8");
     EXPECT_FALSE(state.surface || state.scattering);
+    EXPECT_TRUE(state.tracedLight);
+    applyScriptLine(state, "traced off", "s:8");
+    EXPECT_FALSE(state.tracedLight);
     applyScriptLine(state, "screenshot a.png", "s:9");
     applyScriptLine(state, "screenshot b.png panel", "s:9");
     const std::vector<ViewerState::Screenshot> shots = {{"a.png", false}, {"b.png", true}};

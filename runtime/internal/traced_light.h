@@ -1,0 +1,35 @@
+#pragma once
+// The optical depth from each sample to each light, traced through the objects'
+// meshes, densities and blockers (core/volume_object.h) rather than read from the
+// SH expansion of psi_i. A shadow one part of an object casts on another (the
+// loops of a knot) is a narrow feature of psi_i that 64 coefficients smear over
+// its neighbourhood, and psi_i knows nothing of the other objects; the traced
+// depth is exact for point and directional lights (docs/accuracy.md, traced
+// light), at one ray per sample, light and object.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/sample_set.h"
+#include "core/scene.h"
+#include "core/similarity.h"
+#include "core/volume_object.h"
+
+namespace lucent {
+
+// An object as the renderer stands it: placement maps its own space into the
+// renderer's world; the volume answers in its own world (its transform), which
+// may differ.
+struct TracedVolume {
+    const VolumeObject* volume;
+    Similarity placement;
+};
+
+// For the samples of one object standing at placement, at [i * lights.size() + j]:
+// rgb the optical depth (sigma_t times the density path, every object summed)
+// from sample i's centre to light j in the renderer's world units, and w = 1
+// where a blocker stops the light.
+std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volumes, const SampleSet& samples,
+                                           const Similarity& placement, const std::vector<Light>& lights);
+
+}  // namespace lucent
