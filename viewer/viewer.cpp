@@ -275,7 +275,6 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         using Multiple = ViewerState::Multiple;
         Multiple gridsShown = Multiple::Off;
         bool gridsValid = false, solving = false;
-        bool changedBefore = false;  // the lights or placements changed in the last frame
         std::string solveStatus;
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
@@ -326,10 +325,6 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
                 frameHeight = fbHeight;
                 state.camera.resize(viewWidth, fbHeight);
             }
-            // Changed this frame and the one before: being dragged.
-            const bool changed = state.lightsChanged || state.placementsChanged;
-            const bool dragged = changed && changedBefore;
-            changedBefore = changed;
             if (state.lightsChanged) {
                 renderer.setLights(state.lights);
                 state.lightsChanged = false;
@@ -419,10 +414,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             drawOptions.surface = state.surface;
             drawOptions.scattering = state.scattering;
             drawOptions.extinctionScale = state.extinctionScale;
-            // A light or object being dragged changes every frame: tracing each
-            // sample's light anew would cost 60-100 ms a frame (docs/runtime.md),
-            // so the SH serve until it holds still.
-            drawOptions.tracedLight = state.tracedLight && !dragged;
+            drawOptions.tracedLight = state.tracedLight;
             renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
             glFinish();
             frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -23,8 +23,8 @@ struct ViewerState {
     bool placementsChanged = false;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
-    // Each sample's light traced through the objects (DrawOptions::tracedLight),
-    // once the lights and objects hold still; while they move, read from the SH.
+    // Each sample's light traced through the objects (DrawOptions::tracedLight)
+    // or read from its SH.
     bool tracedLight = true;
     // Multiple scattering added by a hybrid's grids, solved again when the
     // lights change: lbl (docs/hybrid.md) at once, mdom (docs/mdom.md) one
