@@ -42,6 +42,7 @@ struct ScatteringRenderer::Impl {
     ~Impl() {
         if (lights.buffer) glDeleteBuffers(1, &lights.buffer);
     }
+    void retraceAll();
 };
 
 int scatterScaleFor(double radiusPixels) {
@@ -95,6 +96,7 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
     o.albedo = object.albedo;
     o.opticallyThick = object.samples->parameters.scheme == SampleScheme::OpticallyThick;
     impl_->objects.push_back(std::move(o));
+    impl_->retraceAll();
 }
 
 size_t ScatteringRenderer::objectCount() const { return impl_->objects.size(); }
@@ -106,9 +108,19 @@ void checkIndex(const char* call, size_t index, size_t count) {
 }
 }  // namespace
 
+// Every object's traced light crosses the others: adding, removing, moving or
+// refilling one traces them all again.
+void ScatteringRenderer::Impl::retraceAll() {
+    for (GpuObject& o : objects) {
+        o.samples->tracedValid = false;
+        o.samples->receivedValid = false;
+    }
+}
+
 void ScatteringRenderer::removeObject(size_t index) {
     checkIndex("removeObject", index, impl_->objects.size());
     impl_->objects.erase(impl_->objects.begin() + long(index));
+    impl_->retraceAll();
 }
 
 void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, const VolumeObject* volume) {
@@ -117,11 +129,7 @@ void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, cons
     o.samples = std::make_unique<GpuSamples>(samples);
     o.sampleSet = &samples;
     o.volume = volume;
-    // The other objects' light crosses this one's new medium.
-    for (GpuObject& other : impl_->objects) {
-        other.samples->tracedValid = false;
-        other.samples->receivedValid = false;
-    }
+    impl_->retraceAll();
     o.opticallyThick = samples.parameters.scheme == SampleScheme::OpticallyThick;
     o.shadowsValid = false;
 }
@@ -134,13 +142,8 @@ void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement)
     GpuObject& o = impl_->objects[index];
     if (placement == o.placement) return;
     o.placement = placement;
-    o.samples->receivedValid = false;
     o.shadowsValid = false;
-    // The traced light of every object crosses this one.
-    for (GpuObject& other : impl_->objects) {
-        other.samples->tracedValid = false;
-        other.samples->receivedValid = false;
-    }
+    impl_->retraceAll();
 }
 
 void ScatteringRenderer::addScatteringGrid(const ScatteringGrid& grid) { impl_->grids->add(grid); }

@@ -16,10 +16,14 @@ namespace {
 TEST(RendererObjects, RemovingAndGivingNewSamplesMatchARendererBuiltThatWay) {
     SceneDesc scene;
     scene.camera.width = scene.camera.height = 64;
-    Light bulb;
+    Light bulb, behindLeft;
     bulb.position = Vec3(3, 3, 3);
     bulb.power = Rgb(40.0);
-    scene.lights = {bulb};
+    // Its light crosses the left box on the way to the right one: the right box's
+    // traced light must change when the left one goes.
+    behindLeft.position = Vec3(-6.0, 0.1, 0.05);
+    behindLeft.power = Rgb(40.0);
+    scene.lights = {bulb, behindLeft};
     test::ScratchDir dir;
     ObjectDesc left = test::simpleObject(test::writeBox(dir, "left.obj", Vec3(-1.2, -0.4, -0.4), Vec3(-0.4, 0.4, 0.4)), 2.0, 0.8);
     ObjectDesc right = test::simpleObject(test::writeBox(dir, "right.obj", Vec3(0.4, -0.4, -0.4), Vec3(1.2, 0.4, 0.4)), 2.0, 0.8);
@@ -38,13 +42,15 @@ TEST(RendererObjects, RemovingAndGivingNewSamplesMatchARendererBuiltThatWay) {
     Bounds3 bounds;
     for (const VolumeObject& o : objects) bounds.extend(o.mesh().bounds().min), bounds.extend(o.mesh().bounds().max);
     const ViewSetup view = viewSetupFor(scene.camera, bounds);
+    // The lights are set once, before the objects change: what each change
+    // invalidates must be redone by the change itself.
     auto draw = [&](ScatteringRenderer& r) {
-        r.setLights(scene.lights);
         frame.bindAndClear();
         r.draw(view);
         return frame.read();
     };
     ScatteringRenderer changing;
+    changing.setLights(scene.lights);
     changing.addObject(translucentObjectFor(objects[0], samples[0]));
     changing.addObject(translucentObjectFor(objects[1], samples[1]));
     const Image both = draw(changing);
@@ -58,6 +64,8 @@ TEST(RendererObjects, RemovingAndGivingNewSamplesMatchARendererBuiltThatWay) {
     ScatteringRenderer rightOnly, denserOnly;
     rightOnly.addObject(translucentObjectFor(objects[1], samples[1]));
     denserOnly.addObject(translucentObjectFor(objects[2], samples[2]));
+    rightOnly.setLights(scene.lights);
+    denserOnly.setLights(scene.lights);
     EXPECT_LT(compareImages(removed, draw(rightOnly)).relativeRmse, 1e-6);
     EXPECT_LT(compareImages(updated, draw(denserOnly)).relativeRmse, 1e-6);
     EXPECT_GT(compareImages(removed, both).relativeRmse, 0.1) << "removing the left box changed nothing";
