@@ -178,9 +178,8 @@ int main(int argc, char** argv) {
             renderers.back()->setLights(lightsAround(lights, bounds));
         }
         // Three cases: lights that stay put (an isotropic medium then reuses the light
-        // each sample receives, traced once), lights that change every frame read
-        // from the SH (what the viewer draws while a light is dragged), and lights
-        // that change every frame traced again each time.
+        // each sample receives, traced once), and lights that change every frame,
+        // read from the SH again (--light sh) or traced again.
         std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size()),
             traced(lightCounts.size());
         for (int round = 0; round < warmup + 2 * frames; ++round)

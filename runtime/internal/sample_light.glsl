@@ -80,6 +80,10 @@ float blockerVisibility(int j, vec3 x) {
 // It replaces psi_i's SH and the blocker shadows.
 uniform bool tracedLight;
 layout(std430, binding = kBindingTracedDepths) readonly buffer TracedDepths { vec4 tracedDepths[]; };
+vec3 tracedTransmittance(int i, int j) {
+    vec4 traced = tracedDepths[i * lightCount + j];
+    return traced.w > 0.5 ? vec3(0.0) : exp(-extinctionScale * traced.rgb);
+}
 
 uniform float shNormalisation[64];  // sqrt(2) K_lm (K_l0 for m = 0) at index l * l + l + |m|
 
@@ -206,15 +210,9 @@ Received receivedLight(int i, vec3 toCamera) {
         } else {
             toLight = -lights[j].position.xyz;
         }
-        vec3 psi;
-        if (tracedLight) {
-            vec4 traced = tracedDepths[i * lightCount + j];
-            psi = traced.w > 0.5 ? vec3(0.0) : exp(-extinctionScale * traced.rgb);
-        } else {
-            irradiance *= blockerVisibility(j, centre);
-        }
+        if (!tracedLight) irradiance *= blockerVisibility(j, centre);  // traced, the depth holds the blockers
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
-        if (!tracedLight) psi = attenuation(i, toLight);
+        vec3 psi = tracedLight ? tracedTransmittance(i, j) : attenuation(i, toLight);
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
         vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;
