@@ -3,6 +3,8 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
+#include <iterator>
+#include <utility>
 
 #include "core/math.h"
 #include "runtime/internal/frame_targets.h"
@@ -43,12 +45,21 @@ void SamplePass::setSampleUnits(const GlProgram& p) {
     glProgramUniform1i(p.id(), p.uniform("coefficients"), GLint(gpu::kUnitCoefficients));
 }
 
-const GlProgram& SamplePass::scatterProgram(bool slabs, bool countUseful) const {
-    std::unique_ptr<GlProgram>& program = scatterPrograms_[slabs][countUseful];
+const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const {
+    const std::pair<bool, const char*> features[] = {
+        {variant.slabs, "DENSITY_SLABS"},         {variant.regions, "SAMPLE_REGIONS"},
+        {variant.viewFromFront, "VIEW_FROM_FRONT"}, {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
+        {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"}};
+    static_assert(std::size(features) <= 6, "scatterPrograms_ holds 2^6 variants");
+    size_t key = 0;
+    std::vector<std::string> defines;
+    for (size_t k = 0; k < std::size(features); ++k)
+        if (features[k].first) {
+            key |= size_t(1) << k;
+            defines.push_back(features[k].second);
+        }
+    std::unique_ptr<GlProgram>& program = scatterPrograms_[key];
     if (!program) {
-        std::vector<std::string> defines;
-        if (slabs) defines.push_back("DENSITY_SLABS");
-        if (countUseful) defines.push_back("COUNT_USEFUL_FRAGMENTS");
         program = std::make_unique<GlProgram>(
             std::initializer_list<GlProgram::Stage>{{GL_VERTEX_SHADER, "scatter.vert"},
                                                     {GL_GEOMETRY_SHADER, "scatter.geom"},
@@ -152,7 +163,17 @@ void SamplePass::draw(FrameContext& frame) {
     const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
-        const GlProgram& p = scatterProgram(!slabs.empty(), frame.options.discardBelow > 0.0f);
+        const SampleParameters& parameters = o.samples->parameters();
+        const bool lightVaries = parameters.scheme == SampleScheme::Lucent;
+        ScatterVariant variant;
+        variant.slabs = !slabs.empty();
+        variant.regions = parameters.regionAxis != kNoRegionAxis;
+        // sigma_t constant, or constant in slabs the fragments integrate through.
+        variant.viewFromFront = lightVaries && (o.samples->homogeneous() || !slabs.empty());
+        variant.countUseful = frame.options.discardBelow > 0.0f;
+        variant.receivedCached = o.g == 0.0;
+        variant.oneChannel = o.samples->channels() == 1;
+        const GlProgram& p = scatterProgram(variant);
         setFrameUniforms(p, frame);
         setSamplePlacement(p, o.placement);
         setSamplePlacement(receivedProgram_, o.placement);
@@ -166,15 +187,12 @@ void SamplePass::draw(FrameContext& frame) {
             glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
             glProgramUniform1i(program->id(), program->uniform("tracedLight"), traced(o, frame) ? 1 : 0);
         }
-        const bool cache = o.g == 0.0;
-        if (cache) updateReceived(o, frame);
+        if (variant.receivedCached) updateReceived(o, frame);
         glUseProgram(p.id());
-        glUniform1i(p.uniform("receivedIsCached"), cache ? 1 : 0);
         glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
         glUniform1i(p.uniform("channels"), o.samples->channels());
         glUniform1f(p.uniform("g"), float(o.g));
-        glUniform1i(p.uniform("regionAxis"), int(o.samples->parameters().regionAxis));
-        glUniform1i(p.uniform("exactViewAttenuation"), o.samples->homogeneous() || !slabs.empty() ? 1 : 0);
+        if (variant.regions) glUniform1i(p.uniform("regionAxis"), int(parameters.regionAxis));
         if (!slabs.empty()) {
             glUniform1i(p.uniform("slabCount"), GLint(slabs.bounds.size()));
             glUniform4fv(p.uniform("slabBounds"), GLsizei(slabs.bounds.size()), glm::value_ptr(slabs.bounds[0]));
@@ -182,7 +200,7 @@ void SamplePass::draw(FrameContext& frame) {
             for (glm::vec4& e : extinction) e *= frame.options.extinctionScale;
             glUniform4fv(p.uniform("slabExtinction"), GLsizei(extinction.size()), glm::value_ptr(extinction[0]));
         }
-        glUniform1i(p.uniform("lightVaries"), o.samples->parameters().scheme == SampleScheme::Lucent ? 1 : 0);
+        glUniform1i(p.uniform("lightVaries"), lightVaries ? 1 : 0);
         o.samples->draw();
     }
     if (counting) countFragments(queries, *frame.options.fragments);

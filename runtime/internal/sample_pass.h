@@ -36,12 +36,19 @@ private:
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
     // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
     double keptMassInverse_;
-    // The scattering program for objects with constant-density slabs or not
-    // (scatter.frag's table), counting useful fragments or not (the render
-    // benchmark's diagnostic): each compiled the first time a frame needs it, as
-    // llvmpipe runs every branch a program holds, taken or not.
-    const GlProgram& scatterProgram(bool slabs, bool countUseful) const;
-    mutable std::unique_ptr<GlProgram> scatterPrograms_[2][2];
+    // The scattering program's variants (scatter.frag's defines): each compiled the
+    // first time a frame needs it, as llvmpipe runs every branch a program holds,
+    // taken or not.
+    struct ScatterVariant {
+        bool slabs = false;          // constant-density slabs (DENSITY_SLABS)
+        bool regions = false;        // samples clipped to their regions (SAMPLE_REGIONS)
+        bool viewFromFront = false;  // attenuated from each pixel's front face (VIEW_FROM_FRONT)
+        bool countUseful = false;    // the render benchmark's diagnostic (COUNT_USEFUL_FRAGMENTS)
+        bool receivedCached = false; // isotropic: the received light from received.comp (RECEIVED_CACHED)
+        bool oneChannel = false;     // grey sigma_t: one integral for three channels (ONE_CHANNEL)
+    };
+    const GlProgram& scatterProgram(const ScatterVariant& variant) const;
+    mutable std::unique_ptr<GlProgram> scatterPrograms_[64];
     GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};

@@ -12,7 +12,6 @@ in GeometryOut {
     flat vec3 gradient[3];  // logarithmic gradient of the light per channel (scatter.vert)
     flat vec3 extinction;
     flat float viewDepth;   // < 0: the published scheme, or the centre is off screen
-    flat int viewFromFront; // 1: attenuate from this pixel's front face (viewDepth unused)
     flat vec2 region;
 } f;
 
@@ -23,8 +22,17 @@ uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y
 // parameter stays the view's distance (runtime/internal/placement_uniforms.h).
 uniform vec3 objectCamera;
 uniform mat3 viewToObject;
-uniform int regionAxis;         // 0, 1, 2, or 3 when the density has no slabs
-uniform int channels;           // 1: one gradient serves all three channels
+// Program variants (SamplePass::scatterProgram), as llvmpipe runs the body of an
+// if on a uniform whether it is taken or not (each of the two below cost the
+// bunny's 800x800 frame 20-40 ms untaken):
+// - SAMPLE_REGIONS: the samples belong to regions along an axis (density slabs,
+//   preprocess/sample_weights.h), and each Gaussian is clipped to its own;
+// - VIEW_FROM_FRONT: attenuate from this pixel's front face (scatter.vert),
+//   otherwise from the centre's own ray where viewDepth >= 0;
+// - ONE_CHANNEL: sigma_t is grey, and one integral serves the three channels.
+#ifdef SAMPLE_REGIONS
+uniform int regionAxis;         // 0, 1 or 2
+#endif
 #ifdef COUNT_USEFUL_FRAGMENTS
 uniform float discardBelow;     // diagnostics only (the render benchmark's useful fragments)
 #endif
@@ -71,7 +79,7 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
 // The sample's light along this pixel's ray x = t dir, on the Gaussian centred at
 // c (the sample's centre b, or its image): exp(G . (x - b)) towards the lights,
 // times the transmittance to the eye. From this pixel's front face t0 it is
-// exp(-sigma_t (t - t0)) (viewFromFront), or relative to the centre's own,
+// exp(-sigma_t (t - t0)) (VIEW_FROM_FRONT), or relative to the centre's own,
 // exp(-sigma_t ((t - t0) - viewDepth)). Gathered as exp(G' . (x - c)) times
 // exp(G . (c - b) - sigma_t (dir . c - t0) [+ sigma_t viewDepth]), G' = G - sigma_t dir;
 // and a Gaussian times exp(G' . (x - c)) is exp(|G'|^2 s^2 / 2) times the Gaussian
@@ -79,10 +87,11 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
 float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1, float logOffset) {
     float s2 = f.width * f.width;
     float logScale = dot(gradient, f.anchorOffset) + logOffset;
-    if (f.viewFromFront == 1) {
-        logScale -= extinction * (dot(dir, f.viewCentre) - front);
-        gradient -= extinction * dir;
-    } else if (f.viewDepth >= 0.0) {
+#ifdef VIEW_FROM_FRONT
+    logScale -= extinction * (dot(dir, f.viewCentre) - front);
+    gradient -= extinction * dir;
+#else
+    if (f.viewDepth >= 0.0) {
         // Where the front face jumps (a concave object's silhouette in front of
         // another part of it) this pixel's front says nothing about the centre's
         // ray: beyond two widths, or a factor e^2, the correction stops growing.
@@ -91,6 +100,7 @@ float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, flo
         logScale += extinction * (clamp(shift, -limit, limit) - dot(dir, f.anchorOffset));
         gradient -= extinction * dir;
     }
+#endif
     return gaussianSegment(f.viewCentre + gradient * s2, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
 }
 
@@ -135,7 +145,8 @@ void main() {
     float front = a - before;
     float t0 = a, t1 = b;
     vec3 slabsBefore = vec3(0.0);
-    if (regionAxis < 3) {
+#ifdef SAMPLE_REGIONS
+    {
         // The part of the ray inside the sample's density slab.
         float o = objectCamera[regionAxis], d = (viewToObject * dir)[regionAxis];
         vec2 span = slabInterval(f.region, o, d);
@@ -144,19 +155,22 @@ void main() {
 #ifdef DENSITY_SLABS
         // From the first entry: across the air between parts too (a concave object
         // of slabs is not exact here).
-        if (t1 > t0 && f.viewFromFront == 1) slabsBefore = otherSlabsDepth(o, d, inside.x, t0);
+#ifdef VIEW_FROM_FRONT
+        if (t1 > t0) slabsBefore = otherSlabsDepth(o, d, inside.x, t0);
+#endif
 #endif
     }
+#endif
     if (t1 <= t0) discard;  // the interval misses the sample's slab
 
     vec3 integral;
     integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r);
-    if (channels == 3) {
-        integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
-        integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
-    } else {
-        integral.gb = integral.rr;
-    }
+#ifdef ONE_CHANNEL
+    integral.gb = integral.rr;
+#else
+    integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g);
+    integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b);
+#endif
 #ifdef COUNT_USEFUL_FRAGMENTS
     // The largest line integral of the unshifted Gaussian is s sqrt(2 pi).
     if (gaussianSegment(f.viewCentre, f.width, 0.0, dir, t0, t1) < discardBelow * f.width * sqrt(2.0 * 3.14159265358979))

@@ -16,7 +16,6 @@ in VertexOut {
     vec3 gradient[3];
     vec3 extinction;
     float viewDepth;
-    int viewFromFront;
     vec2 region;
 } v[];
 
@@ -28,7 +27,6 @@ out GeometryOut {
     flat vec3 gradient[3];
     flat vec3 extinction;
     flat float viewDepth;
-    flat int viewFromFront;
     flat vec2 region;
 } o;
 
@@ -55,7 +53,6 @@ void emit(vec3 centre, vec4 clip) {
     o.gradient = v[0].gradient;
     o.extinction = v[0].extinction;
     o.viewDepth = v[0].viewDepth;
-    o.viewFromFront = v[0].viewFromFront;
     o.region = v[0].region;
     gl_Position = vec4(clip.xy, proxyDepth * clip.w, clip.w);
     EmitVertex();

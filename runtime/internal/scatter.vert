@@ -22,13 +22,22 @@
 // psi_i(w_view) is only used where the density varies smoothly.
 uniform vec3 cameraPosition;
 uniform mat4 view;
-// With an isotropic phase function the received light does not depend on the
-// view: received.comp computes it when lights change, and frames reuse it.
-uniform bool receivedIsCached;
+// RECEIVED_CACHED (a program variant, SamplePass::scatterProgram): with an
+// isotropic phase function the received light does not depend on the view:
+// received.comp computes it when lights change, and frames reuse it. A variant,
+// not a uniform: llvmpipe evaluated receivedLight for every sample and frame
+// behind the uniform's select (8-10 ms of the bunny's frame).
 layout(std430, binding = kBindingReceived) readonly buffer ReceivedCache { Received cachedReceived[]; };
-// sigma_t is constant, or constant in slabs that scatter.frag integrates through.
-uniform bool exactViewAttenuation;
 uniform bool lightVaries;  // false for the published scheme: v_i constant under the Gaussian
+// VIEW_FROM_FRONT (a program variant, SamplePass::scatterProgram): the light varies
+// under the Gaussian and sigma_t is constant, or constant in slabs that
+// scatter.frag integrates through, so the fragments attenuate from their own
+// front face, exactly, and viewDepth is unused.
+#ifdef VIEW_FROM_FRONT
+const bool viewFromFront = true;
+#else
+const bool viewFromFront = false;
+#endif
 uniform mat4 projection;
 uniform sampler2D raySegments;  // per pixel [t0, t1] (segment.frag)
 
@@ -40,7 +49,6 @@ out VertexOut {
     vec3 gradient[3];  // towards the lights, view space, per channel
     vec3 extinction;
     float viewDepth;   // eye distance from the front face to the centre on the centre's ray; < 0: unknown
-    int viewFromFront; // 1: the fragments attenuate from their own front face, exactly (viewDepth unused)
     vec2 region;
 } v;
 
@@ -53,16 +61,19 @@ void main() {
     vec3 centre = sampleCentre(i);
     float s = sampleWidth(i);
     vec3 toCamera = normalize(cameraPosition - centre);
-    Received received = receivedIsCached ? cachedReceived[i] : receivedLight(i, toCamera);
+#ifdef RECEIVED_CACHED
+    Received received = cachedReceived[i];
+#else
+    Received received = receivedLight(i, toCamera);
+#endif
     v.viewCentre = (view * vec4(centre, 1.0)).xyz;
     v.viewImage = (view * vec4(placed(samples[i].image.xyz), 1.0)).xyz;
     v.width = s;
     v.region = samples[i].region.xy;
     v.extinction = extinctionScale * samples[i].extinction.rgb;
     v.viewDepth = -1.0;
-    v.viewFromFront = lightVaries && exactViewAttenuation ? 1 : 0;
     vec4 clip = projection * vec4(v.viewCentre, 1.0);
-    if (lightVaries && v.viewFromFront == 0 && clip.w > 0.0) {
+    if (lightVaries && !viewFromFront && clip.w > 0.0) {
         ivec2 size = textureSize(raySegments, 0);
         vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size);
         if (all(greaterThanEqual(pixel, vec2(0.0))) && all(lessThan(pixel, vec2(size)))) {
@@ -70,7 +81,7 @@ void main() {
             if (segment.x >= 0.0) v.viewDepth = max(length(v.viewCentre) - segment.x, 0.0);
         }
     }
-    vec3 towardCamera = v.viewFromFront == 1 ? vec3(1.0) : attenuation(i, toCamera);
+    vec3 towardCamera = viewFromFront ? vec3(1.0) : attenuation(i, toCamera);
     v.radiance = extinctionScale * samples[i].scattering.rgb * received.light.rgb * towardCamera;
     for (int c = 0; c < 3; ++c) {
         vec3 g = vec3(0.0);
