@@ -77,8 +77,8 @@ float blockerVisibility(int j, vec3 x) {
 }
 // The optical depth to each light traced on the CPU (runtime/internal/traced_light.h),
 // [sample][light], in world units before extinctionScale; w = 1: a blocker is in the way.
-// It replaces psi_i's SH and the blocker shadows.
-uniform bool tracedLight;
+// It replaces psi_i's SH and the blocker shadows. TRACED_LIGHT is a program
+// variant (SamplePass): behind a uniform, llvmpipe evaluated the SH as well.
 layout(std430, binding = kBindingTracedDepths) readonly buffer TracedDepths { vec4 tracedDepths[]; };
 vec3 tracedTransmittance(int i, int j) {
     vec4 traced = tracedDepths[i * lightCount + j];
@@ -210,9 +210,14 @@ Received receivedLight(int i, vec3 toCamera) {
         } else {
             toLight = -lights[j].position.xyz;
         }
-        if (!tracedLight) irradiance *= blockerVisibility(j, centre);  // traced, the depth holds the blockers
+#ifdef TRACED_LIGHT
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
-        vec3 psi = tracedLight ? tracedTransmittance(i, j) : attenuation(i, toLight);
+        vec3 psi = tracedTransmittance(i, j);  // the depth holds the blockers
+#else
+        irradiance *= blockerVisibility(j, centre);
+        if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
+        vec3 psi = attenuation(i, toLight);
+#endif
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
         vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;

@@ -35,8 +35,18 @@ void setShNormalisation(const GlProgram& program) {
 
 SamplePass::SamplePass(double cutoff)
     : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))),
-      keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {
-    setSampleUnits(receivedProgram_);
+      keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {}
+
+const GlProgram& SamplePass::receivedProgram(bool tracedLight) const {
+    std::unique_ptr<GlProgram>& program = receivedPrograms_[tracedLight ? 1 : 0];
+    if (!program) {
+        std::vector<std::string> defines;
+        if (tracedLight) defines.push_back("TRACED_LIGHT");
+        program = std::make_unique<GlProgram>(std::initializer_list<GlProgram::Stage>{{GL_COMPUTE_SHADER, "received.comp"}},
+                                              defines);
+        setSampleUnits(*program);
+    }
+    return *program;
 }
 
 void SamplePass::setSampleUnits(const GlProgram& p) {
@@ -49,8 +59,9 @@ const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const
     const std::pair<bool, const char*> features[] = {
         {variant.slabs, "DENSITY_SLABS"},         {variant.regions, "SAMPLE_REGIONS"},
         {variant.viewFromFront, "VIEW_FROM_FRONT"}, {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
-        {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"}};
-    static_assert(std::size(features) <= 6, "scatterPrograms_ holds 2^6 variants");
+        {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"},
+        {variant.tracedLight, "TRACED_LIGHT"}};
+    static_assert(std::size(features) <= 7, "scatterPrograms_ holds 2^7 variants");
     size_t key = 0;
     std::vector<std::string> defines;
     for (size_t k = 0; k < std::size(features); ++k)
@@ -117,7 +128,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     const bool tracedLight = traced(o, frame);
     if (o.samples->receivedValid && o.samples->receivedScale == scale && o.samples->receivedTraced == tracedLight)
         return;
-    const GlProgram& c = receivedProgram_;
+    const GlProgram& c = receivedProgram(tracedLight);
     glUseProgram(c.id());
     glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
     glUniform1i(c.uniform("channels"), o.samples->channels());
@@ -173,20 +184,20 @@ void SamplePass::draw(FrameContext& frame) {
         variant.countUseful = frame.options.discardBelow > 0.0f;
         variant.receivedCached = o.g == 0.0;
         variant.oneChannel = o.samples->channels() == 1;
+        variant.tracedLight = traced(o, frame);
         const GlProgram& p = scatterProgram(variant);
+        const GlProgram& received = receivedProgram(variant.tracedLight);
         setFrameUniforms(p, frame);
         setSamplePlacement(p, o.placement);
-        setSamplePlacement(receivedProgram_, o.placement);
+        setSamplePlacement(received, o.placement);
         const glm::vec3 objectCamera(o.placement.inversePoint(Vec3(frame.view.cameraPosition)));
         const glm::mat3 viewToObject(glm::transpose(o.placement.rotation) * viewToWorld / o.placement.scale);
         glProgramUniform3fv(p.id(), p.uniform("objectCamera"), 1, glm::value_ptr(objectCamera));
         glProgramUniformMatrix3fv(p.id(), p.uniform("viewToObject"), 1, GL_FALSE, glm::value_ptr(viewToObject));
         o.samples->bind();
         if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
-        for (const GlProgram* program : {&p, static_cast<const GlProgram*>(&receivedProgram_)}) {
+        for (const GlProgram* program : {&p, &received})
             glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
-            glProgramUniform1i(program->id(), program->uniform("tracedLight"), traced(o, frame) ? 1 : 0);
-        }
         if (variant.receivedCached) updateReceived(o, frame);
         glUseProgram(p.id());
         glUniform1i(p.uniform("shOrder"), o.samples->shOrder());

@@ -46,10 +46,13 @@ private:
         bool countUseful = false;    // the render benchmark's diagnostic (COUNT_USEFUL_FRAGMENTS)
         bool receivedCached = false; // isotropic: the received light from received.comp (RECEIVED_CACHED)
         bool oneChannel = false;     // grey sigma_t: one integral for three channels (ONE_CHANNEL)
+        bool tracedLight = false;    // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
     };
     const GlProgram& scatterProgram(const ScatterVariant& variant) const;
-    mutable std::unique_ptr<GlProgram> scatterPrograms_[64];
-    GlProgram receivedProgram_{{GL_COMPUTE_SHADER, "received.comp"}};
+    mutable std::unique_ptr<GlProgram> scatterPrograms_[128];
+    // The received light for isotropic media, traced or from the SH (TRACED_LIGHT).
+    const GlProgram& receivedProgram(bool tracedLight) const;
+    mutable std::unique_ptr<GlProgram> receivedPrograms_[2];
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};
     // The scattered light at the scattering's resolution, before upsampling or adding.
