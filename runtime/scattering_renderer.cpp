@@ -189,8 +189,9 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     frame.scatterView = scale == 1 ? &view : &reduced;
     frame.scatterTargets = scale == 1 ? &r.targets : &r.scatterTargets;
     for (const auto& pass : r.passes) pass->prepare(frame);
-    // Drawn reduced, the scattering asks of the full targets only the first interval.
-    r.targets.draw(frame, view, scale == 1 ? gpu::kMaxRaySegments : 1);
+    // Drawn reduced, the scattering asks of the full targets only the first
+    // interval; the grids march the whole segment at full resolution.
+    r.targets.draw(frame, view, scale != 1 && r.grids->empty());
     if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);

@@ -52,7 +52,8 @@ void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& progra
     }
 }
 
-void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int intervals) {
+void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool firstIntervalOnly) {
+    const int intervals = firstIntervalOnly ? 1 : gpu::kMaxRaySegments;
     for (TextureTarget& t : frontLayers_) t.resize(view.width, view.height);
     for (TextureTarget& t : backLayers_) t.resize(view.width, view.height);
     back_.resize(view.width, view.height);
@@ -102,11 +103,13 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     glDepthFunc(GL_LESS);
     drawMeshes(frame, depthProgram_);
     back_.clearDepth(0.0f);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, back_.framebuffer());
-    glCullFace(GL_FRONT);
-    glDepthFunc(GL_GREATER);
-    drawMeshes(frame, depthProgram_);
-    glDepthFunc(GL_LESS);
+    if (!firstIntervalOnly) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, back_.framebuffer());
+        glCullFace(GL_FRONT);
+        glDepthFunc(GL_GREATER);
+        drawMeshes(frame, depthProgram_);
+        glDepthFunc(GL_LESS);
+    }
     if (frame.options.scattering) {
         // The later entries and the exits, nearest first, by depth peeling: each
         // layer keeps the nearest face beyond the layer before it.
@@ -146,7 +149,12 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, int in
     glNamedFramebufferTexture(segments_.framebuffer(), GL_DEPTH_ATTACHMENT, reach_.texture(), 0);
     const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
-    const GlProgram& p = segmentProgram_;
+    if (firstIntervalOnly && !firstIntervalProgram_)
+        firstIntervalProgram_ = std::make_unique<GlProgram>(
+            std::initializer_list<GlProgram::Stage>{{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                                    {GL_FRAGMENT_SHADER, "segment.frag"}},
+            std::vector<std::string>{"FIRST_INTERVAL_ONLY"});
+    const GlProgram& p = firstIntervalOnly ? *firstIntervalProgram_ : segmentProgram_;
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
     glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));

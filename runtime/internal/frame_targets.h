@@ -3,6 +3,8 @@
 // the opaque blockers drawn in, the nearest front face and the farthest back face
 // of the translucent meshes with the next entries and exits peeled behind them,
 // each pixel's ray segment [t0, t1] inside them and its first two intervals inside.
+#include <memory>
+
 #include "runtime/internal/gl.h"
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/gpu_layout.h"
@@ -42,10 +44,12 @@ public:
     // Draws the targets for this frame as seen through view (frame.view, or the
     // reduced one the scattering runs at: the host's depth is then read at each
     // pixel's centre); leaves depth testing on with GL_LESS, back faces culled
-    // and the last target bound. intervals: how many of the first intervals
-    // inside are peeled apart (up to kMaxRaySegments); fewer where the scattering
-    // is drawn elsewhere and only the first is asked for (the upsampling's likeness).
-    void draw(const FrameContext& frame, const ViewSetup& view, int intervals = gpu::kMaxRaySegments);
+    // and the last target bound. firstIntervalOnly: the scattering is drawn
+    // elsewhere, and only the surface (frontDepth) and the upsampling's likeness
+    // (the first interval of insideSegments) read these targets: the later
+    // intervals, raySegments and reachDepth are left out, and so are their mesh
+    // passes (the farthest back face, the peeled layers).
+    void draw(const FrameContext& frame, const ViewSetup& view, bool firstIntervalOnly = false);
     // Draws every object's boundary mesh with program (mesh.vert), each where it stands.
     static void drawMeshes(const FrameContext& frame, const GlProgram& program);
 
@@ -65,6 +69,8 @@ private:
     GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
     GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
     GlProgram segmentProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}};
+    // segment.frag with FIRST_INTERVAL_ONLY, compiled on first use.
+    std::unique_ptr<GlProgram> firstIntervalProgram_;
     // The entries (front faces) and exits (back faces) nearest first, peeled.
     TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
                                                        TextureTarget(GL_DEPTH_COMPONENT32F)};

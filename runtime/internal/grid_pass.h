@@ -20,6 +20,7 @@ public:
 
     void add(const ScatteringGrid& grid);  // uploaded at once; the grid need not outlive the pass
     void clear();
+    bool empty() const { return grids_.empty(); }
     void draw(FrameContext& frame) override;
 
 private:

@@ -30,6 +30,18 @@ float eyeDistance(float depth, vec2 ndc) {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
+#ifdef FIRST_INTERVAL_ONLY
+    // FrameTargets::draw(firstIntervalOnly): the first entry and exit alone (no
+    // farthest back face was drawn); segment and the reach are not read.
+    float entry = texelFetch(frontLayers[0], pixel, 0).r, exit = texelFetch(backLayers[0], pixel, 0).r;
+    float host = texelFetch(hostDepth, pixel, 0).r;
+    float a = cameraInside ? 0.0 : eyeDistance(entry, ndc);
+    float b = min(eyeDistance(exit, ndc), host < 1.0 ? eyeDistance(host, ndc) : 3.4e38);
+    bool hit = exit < 1.0 && (cameraInside || entry < 1.0) && a < b;
+    inside = vec4(hit ? vec2(a, b) : vec2(-1.0, -2.0), -1.0, -2.0);
+    segment = vec2(-1.0, -2.0);
+    gl_FragDepth = 0.0;
+#else
     float front = texelFetch(frontLayers[0], pixel, 0).r, back = texelFetch(farthestBack, pixel, 0).r;
     float host = texelFetch(hostDepth, pixel, 0).r;
     float hostT = host < 1.0 ? eyeDistance(host, ndc) : 3.4e38;
@@ -63,4 +75,5 @@ void main() {
     // (scatter.geom), so that a Gaussian wholly beyond it, or a pixel whose ray
     // misses the objects, costs no fragment shading.
     gl_FragDepth = intervals[0].y > intervals[0].x ? min(back, host) : 0.0;
+#endif
 }
