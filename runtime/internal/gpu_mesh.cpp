@@ -11,21 +11,26 @@ GpuMesh::GpuMesh(const TriangleMesh& mesh) {
     // cache its reuse.
     const std::vector<std::array<Vec3, 3>> normals = cornerNormals(mesh);
     std::vector<glm::vec3> vertices;  // position, normal
-    std::vector<std::vector<std::pair<glm::vec3, uint32_t>>> copies(mesh.positions.size());
+    vertices.reserve(2 * mesh.positions.size());
+    // The copies of each mesh vertex as a list through the vertices made: its
+    // latest copy, and each copy's previous one (no allocation per vertex).
+    constexpr uint32_t kNone = ~0u;
+    std::vector<uint32_t> latest(mesh.positions.size(), kNone), previous;
+    previous.reserve(mesh.positions.size());
     std::vector<uint32_t> indices;
     indices.reserve(mesh.triangles.size() * 3);
     for (size_t f = 0; f < mesh.triangles.size(); ++f)
         for (int c = 0; c < 3; ++c) {
             const uint32_t v = mesh.triangles[f][c];
             const glm::vec3 n(normals[f][c]);
-            uint32_t index = ~0u;
-            for (const auto& [normal, i] : copies[v])
-                if (normal == n) index = i;
-            if (index == ~0u) {
-                index = uint32_t(vertices.size() / 2);
+            uint32_t index = latest[v];
+            while (index != kNone && vertices[2 * size_t(index) + 1] != n) index = previous[index];
+            if (index == kNone) {
+                index = uint32_t(previous.size());
                 vertices.emplace_back(mesh.positions[v]);
                 vertices.push_back(n);
-                copies[v].emplace_back(n, index);
+                previous.push_back(latest[v]);
+                latest[v] = index;
             }
             indices.push_back(index);
         }
