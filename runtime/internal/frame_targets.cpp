@@ -102,8 +102,8 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
     glCullFace(GL_BACK);
     glDepthFunc(GL_LESS);
     drawMeshes(frame, depthProgram_);
-    back_.clearDepth(0.0f);
     if (!firstIntervalOnly) {
+        back_.clearDepth(0.0f);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, back_.framebuffer());
         glCullFace(GL_FRONT);
         glDepthFunc(GL_GREATER);
@@ -120,9 +120,9 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
         for (int k = 0; k < gpu::kMaxRaySegments; ++k)
             for (const bool exits : {false, true}) {
                 if (!exits && k == 0) continue;  // the nearest front face is drawn above
+                if (k >= intervals) continue;  // no such interval: segment.frag reads none
                 TextureTarget& layer = exits ? backLayers_[k] : frontLayers_[k];
                 layer.clearDepth(1.0f);
-                if (k >= intervals) continue;  // left empty: no such interval
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
                 glCullFace(exits ? GL_FRONT : GL_BACK);
                 // The first exit has no layer before it: the plain depth program keeps the nearest back face.
@@ -149,12 +149,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
     glNamedFramebufferTexture(segments_.framebuffer(), GL_DEPTH_ATTACHMENT, reach_.texture(), 0);
     const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
-    if (firstIntervalOnly && !firstIntervalProgram_)
-        firstIntervalProgram_ = std::make_unique<GlProgram>(
-            std::initializer_list<GlProgram::Stage>{{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                                    {GL_FRAGMENT_SHADER, "segment.frag"}},
-            std::vector<std::string>{"FIRST_INTERVAL_ONLY"});
-    const GlProgram& p = firstIntervalOnly ? *firstIntervalProgram_ : segmentProgram_;
+    const GlProgram& p = firstIntervalOnly ? segmentPrograms_.get({"FIRST_INTERVAL_ONLY"}) : segmentPrograms_.get();
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
     glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));

@@ -68,9 +68,8 @@ private:
     GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
     GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
     GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
-    GlProgram segmentProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}};
-    // segment.frag with FIRST_INTERVAL_ONLY, compiled on first use.
-    std::unique_ptr<GlProgram> firstIntervalProgram_;
+    // segment.frag, and its FIRST_INTERVAL_ONLY variant.
+    GlProgramVariants segmentPrograms_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}}};
     // The entries (front faces) and exits (back faces) nearest first, peeled.
     TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
                                                        TextureTarget(GL_DEPTH_COMPONENT32F)};

@@ -17,7 +17,7 @@ std::string oneLine(std::string log) {
 
 }  // namespace
 
-GlProgram::GlProgram(std::initializer_list<Stage> stages, const std::vector<std::string>& defines) {
+GlProgram::GlProgram(const std::vector<Stage>& stages, const std::vector<std::string>& defines) {
     // Assemble every stage first, so that a missing file leaks no GL object.
     std::vector<std::string> sources;
     for (const Stage& stage : stages) {
@@ -67,6 +67,16 @@ GlProgram::GlProgram(std::initializer_list<Stage> stages, const std::vector<std:
 
 GlProgram::~GlProgram() {
     if (id_) glDeleteProgram(id_);
+}
+
+const GlProgram& GlProgramVariants::get(const std::vector<std::string>& defines) const {
+    std::unique_ptr<GlProgram>& program = programs_[defines];
+    if (!program) {
+        auto built = std::make_unique<GlProgram>(stages_, defines);
+        if (setUp_) setUp_(*built);
+        program = std::move(built);
+    }
+    return *program;
 }
 
 }  // namespace lucent

@@ -38,15 +38,7 @@ SamplePass::SamplePass(double cutoff)
       keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {}
 
 const GlProgram& SamplePass::receivedProgram(bool tracedLight) const {
-    std::unique_ptr<GlProgram>& program = receivedPrograms_[tracedLight ? 1 : 0];
-    if (!program) {
-        std::vector<std::string> defines;
-        if (tracedLight) defines.push_back("TRACED_LIGHT");
-        program = std::make_unique<GlProgram>(std::initializer_list<GlProgram::Stage>{{GL_COMPUTE_SHADER, "received.comp"}},
-                                              defines);
-        setSampleUnits(*program);
-    }
-    return *program;
+    return tracedLight ? receivedPrograms_.get({"TRACED_LIGHT"}) : receivedPrograms_.get();
 }
 
 void SamplePass::setSampleUnits(const GlProgram& p) {
@@ -61,24 +53,10 @@ const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const
         {variant.viewFromFront, "VIEW_FROM_FRONT"}, {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
         {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"},
         {variant.tracedLight, "TRACED_LIGHT"}};
-    static_assert(std::size(features) <= 7, "scatterPrograms_ holds 2^7 variants");
-    size_t key = 0;
     std::vector<std::string> defines;
-    for (size_t k = 0; k < std::size(features); ++k)
-        if (features[k].first) {
-            key |= size_t(1) << k;
-            defines.push_back(features[k].second);
-        }
-    std::unique_ptr<GlProgram>& program = scatterPrograms_[key];
-    if (!program) {
-        program = std::make_unique<GlProgram>(
-            std::initializer_list<GlProgram::Stage>{{GL_VERTEX_SHADER, "scatter.vert"},
-                                                    {GL_GEOMETRY_SHADER, "scatter.geom"},
-                                                    {GL_FRAGMENT_SHADER, "scatter.frag"}},
-            defines);
-        setSampleUnits(*program);
-    }
-    return *program;
+    for (const auto& [wanted, define] : features)
+        if (wanted) defines.push_back(define);
+    return scatterPrograms_.get(defines);
 }
 
 bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {

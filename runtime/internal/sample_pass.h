@@ -36,9 +36,8 @@ private:
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
     // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
     double keptMassInverse_;
-    // The scattering program's variants (scatter.frag's defines): each compiled the
-    // first time a frame needs it, as llvmpipe runs every branch a program holds,
-    // taken or not.
+    // The scattering program's variants: the defines that shape scatter.vert,
+    // scatter.geom, scatter.frag and sample_light.glsl (GlProgramVariants).
     struct ScatterVariant {
         bool slabs = false;          // constant-density slabs (DENSITY_SLABS)
         bool regions = false;        // samples clipped to their regions (SAMPLE_REGIONS)
@@ -49,10 +48,13 @@ private:
         bool tracedLight = false;    // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
     };
     const GlProgram& scatterProgram(const ScatterVariant& variant) const;
-    mutable std::unique_ptr<GlProgram> scatterPrograms_[128];
+    GlProgramVariants scatterPrograms_{{{GL_VERTEX_SHADER, "scatter.vert"},
+                                        {GL_GEOMETRY_SHADER, "scatter.geom"},
+                                        {GL_FRAGMENT_SHADER, "scatter.frag"}},
+                                       setSampleUnits};
     // The received light for isotropic media, traced or from the SH (TRACED_LIGHT).
     const GlProgram& receivedProgram(bool tracedLight) const;
-    mutable std::unique_ptr<GlProgram> receivedPrograms_[2];
+    GlProgramVariants receivedPrograms_{{{GL_COMPUTE_SHADER, "received.comp"}}, setSampleUnits};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};
     // The scattered light at the scattering's resolution, before upsampling or adding.
