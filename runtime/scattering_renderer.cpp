@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/grid_pass.h"
 #include "runtime/internal/gpu_layout.h"
@@ -156,7 +157,12 @@ size_t ScatteringRenderer::sampleCount() const {
 }
 
 void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
+    if (lights.size() > kMaxLights)
+        throw Error("ScatteringRenderer::setLights: " + std::to_string(lights.size()) + " lights; at most " +
+                    std::to_string(kMaxLights));
+    static_assert(gpu::kMaxLights == kMaxLights, "lights.glsl's block holds the scene's limit");
     std::vector<gpu::Light> packed;
+    packed.reserve(kMaxLights);
     for (const Light& l : lights) {
         if (l.type == Light::Type::Point) packed.push_back({glm::vec4(glm::vec3(l.position), 1.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
         else packed.push_back({glm::vec4(glm::vec3(l.direction), 0.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
@@ -164,8 +170,8 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     GpuLights& g = impl_->lights;
     if (g.buffer) glDeleteBuffers(1, &g.buffer);
     glCreateBuffers(1, &g.buffer);
-    glNamedBufferStorage(g.buffer, GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(gpu::Light)),
-                         packed.empty() ? nullptr : packed.data(), 0);
+    packed.resize(kMaxLights);  // the uniform block's whole size, as lights.glsl declares it
+    glNamedBufferStorage(g.buffer, GLsizeiptr(packed.size() * sizeof(gpu::Light)), packed.data(), 0);
     g.count = int(lights.size());
     g.lights = lights;
     for (GpuObject& o : impl_->objects) {
@@ -195,7 +201,7 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingLights, r.lights.buffer);
+    glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kBindingLights, r.lights.buffer);
     for (const auto& pass : r.passes) pass->draw(frame);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);

@@ -16,9 +16,9 @@ using glm::vec4;
 #define LUCENT_GPU_CONSTANT(name, value) const int name = value;
 #endif
 
-// Shader storage buffer bindings.
+// Shader storage buffer bindings, and the lights' uniform block (lights.glsl).
 LUCENT_GPU_CONSTANT(kBindingSamples, 0)       // Sample[]: one object's samples
-LUCENT_GPU_CONSTANT(kBindingLights, 1)        // Light[]: the scene's lights
+LUCENT_GPU_CONSTANT(kBindingLights, 1)        // uniform block Light[kMaxLights]: the scene's lights
 LUCENT_GPU_CONSTANT(kBindingReceived, 2)      // Received[]: the cached light each sample receives
 LUCENT_GPU_CONSTANT(kBindingShadowViews, 3)   // mat4[]: view-projection of each blocker shadow layer
 LUCENT_GPU_CONSTANT(kBindingTracedDepths, 4)  // vec4[sample][light]: traced optical depths (traced_light.h)
@@ -34,6 +34,8 @@ LUCENT_GPU_CONSTANT(kUnitCoefficients, 6)     // float texture buffer: SH coeffi
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)
+// The lights' uniform block holds this many: core/limits.h's kMaxLights (8 KiB).
+LUCENT_GPU_CONSTANT(kMaxLights, 256)
 
 struct Light {
     vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel

@@ -11,7 +11,7 @@ in vec3 worldPosition;
 in vec3 worldNormal;
 
 #include "gpu_layout.h"
-layout(std430, binding = kBindingLights) readonly buffer Lights { Light lights[]; };
+#include "lights.glsl"
 
 uniform int lightCount;
 uniform vec3 cameraPosition;

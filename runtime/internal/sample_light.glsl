@@ -2,7 +2,7 @@
 // each sample's attenuation, and the light a sample receives.
 #include "gpu_layout.h"
 layout(std430, binding = kBindingSamples) readonly buffer Samples { Sample samples[]; };
-layout(std430, binding = kBindingLights) readonly buffer Lights { Light lights[]; };
+#include "lights.glsl"
 // The SH coefficients, [sample][channel][coefficient], one float per texel (gpu_samples.h).
 uniform samplerBuffer coefficients;
 float shAt(int k) { return texelFetch(coefficients, k).r; }
