@@ -65,12 +65,19 @@ bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {
 }
 
 void SamplePass::prepare(FrameContext& frame) {
+    pendingTraces_.clear();  // a frame that threw before draw(): waits for its traces, drops them
     std::vector<TracedVolume> volumes;
     for (const GpuObject& o : frame.objects)
         if (o.volume) volumes.push_back({o.volume, o.placement});
     for (GpuObject& o : frame.objects) {
+        // Traced on the CPU while the frame's targets are drawn, which leave a core
+        // idle while llvmpipe loads their programs (docs/runtime.md); draw() waits.
         if (traced(o, frame) && !o.samples->tracedValid)
-            o.samples->setTracedDepths(tracedOpticalDepths(volumes, *o.sampleSet, o.placement, frame.lights.lights));
+            pendingTraces_.push_back(
+                {o.samples.get(), std::async(std::launch::async, [volumes, samples = o.sampleSet, placement = o.placement,
+                                                                  lights = frame.lights.lights] {
+                     return tracedOpticalDepths(volumes, *samples, placement, lights);
+                 })});
         if (o.shadows && !o.shadowsValid && !traced(o, frame)) {
             o.shadows->render(frame.lights.lights, o.placement);
             o.shadowsValid = true;
@@ -121,6 +128,8 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
 }
 
 void SamplePass::draw(FrameContext& frame) {
+    for (auto& [samples, depths] : pendingTraces_) samples->setTracedDepths(depths.get());
+    pendingTraces_.clear();
     if (!frame.options.scattering) return;
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);

@@ -7,7 +7,10 @@
 // (proxies beyond it are rejected before shading), and is then added to the
 // host's framebuffer (add_light.frag), or upsampled along the objects' depth
 // when the scattering is reduced (upsample.frag).
+#include <future>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gl_program.h"
@@ -36,6 +39,8 @@ private:
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
     // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
     double keptMassInverse_;
+    // The traced depths prepare() started, set on their samples when draw() begins.
+    std::vector<std::pair<GpuSamples*, std::future<std::vector<glm::vec4>>>> pendingTraces_;
     // The scattering program's variants: the defines that shape scatter.vert,
     // scatter.geom, scatter.frag and sample_light.glsl (GlProgramVariants).
     struct ScatterVariant {
