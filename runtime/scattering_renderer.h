@@ -24,7 +24,7 @@ namespace lucent {
 
 struct TranslucentObject {
     const TriangleMesh* mesh;            // boundary, drawn for the surface and the depth passes
-    const SampleSet* samples;            // from lucent preprocess, in the mesh's space
+    const SampleSet* samples;            // from lucent preprocess, in the mesh's space; must outlive the renderer
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there

@@ -22,7 +22,7 @@ void checkGpuCapacity(size_t samples, size_t coefficientsPerSample, uint64_t max
 }
 
 GpuSamples::GpuSamples(const SampleSet& samples)
-    : count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
+    : source_(&samples), count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
       parameters_(samples.parameters), homogeneous_(isHomogeneous(samples)), slabs_(findSlabs(samples)) {
     if (samples.shOrder > kMaxSampleShOrder)
         throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most " +
@@ -38,9 +38,13 @@ GpuSamples::GpuSamples(const SampleSet& samples)
     glCreateBuffers(3, buffers_);
     glNamedBufferStorage(buffers_[0], GLsizeiptr(std::max<size_t>(packed.size(), 1) * sizeof(gpu::Sample)),
                          packed.empty() ? nullptr : packed.data(), 0);
-    glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(samples.sh.size(), 1) * sizeof(float)),
-                         samples.sh.empty() ? nullptr : samples.sh.data(), 0);
     glNamedBufferStorage(buffers_[2], GLsizeiptr(std::max<size_t>(count_, 1) * sizeof(gpu::Received)), nullptr, 0);
+}
+
+void GpuSamples::uploadCoefficients() {
+    const std::vector<float>& sh = source_->sh;
+    glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(sh.size(), 1) * sizeof(float)),
+                         sh.empty() ? nullptr : sh.data(), 0);
     // The coefficients are read through a texture buffer: llvmpipe gathers texel
     // fetches with vector instructions where it loads storage buffers lane by lane
     // (the received light of 39 568 samples: 127 -> 55-64 ms), and its largest
@@ -50,16 +54,17 @@ GpuSamples::GpuSamples(const SampleSet& samples)
 }
 
 GpuSamples::~GpuSamples() {
-    glDeleteTextures(1, &coefficientTexture_);
+    if (coefficientTexture_) glDeleteTextures(1, &coefficientTexture_);
     glDeleteBuffers(3, buffers_);
     if (tracedBuffer_) glDeleteBuffers(1, &tracedBuffer_);
     glDeleteVertexArrays(1, &vao_);
 }
 
-void GpuSamples::bind() const {
+void GpuSamples::bind(bool coefficients) {
+    if (coefficients && !coefficientTexture_) uploadCoefficients();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingSamples, buffers_[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingReceived, buffers_[2]);
-    glBindTextureUnit(gpu::kUnitCoefficients, coefficientTexture_);
+    glBindTextureUnit(gpu::kUnitCoefficients, coefficients ? coefficientTexture_ : 0);
     if (tracedBuffer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingTracedDepths, tracedBuffer_);
 }
 

@@ -25,8 +25,12 @@ public:
     GpuSamples(const GpuSamples&) = delete;
     GpuSamples& operator=(const GpuSamples&) = delete;
 
-    // Binds the sample and received-light buffers and the coefficients (gpu_layout.h).
-    void bind() const;
+    // Binds the sample and received-light buffers and, when the program reads
+    // them, the SH coefficients (gpu_layout.h). These are uploaded on the first
+    // bind that asks for them, from the sample set given to the constructor,
+    // which must outlive this: with the traced light in a medium of constant
+    // density no program reads them, and the bunny's 31 MB cost 10-15 ms to upload.
+    void bind(bool coefficients);
     // One point per sample (buffers bound).
     void draw() const;
     // Runs the bound compute program over the samples, filling the received light.
@@ -50,6 +54,8 @@ public:
     const SlabTable& slabs() const { return slabs_; }
 
 private:
+    void uploadCoefficients();
+    const SampleSet* source_;
     GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0, tracedBuffer_ = 0;
     size_t count_ = 0;
     uint64_t maxBlockBytes_ = 0;

@@ -181,7 +181,8 @@ void SamplePass::draw(FrameContext& frame) {
         const glm::mat3 viewToObject(glm::transpose(o.placement.rotation) * viewToWorld / o.placement.scale);
         glProgramUniform3fv(p.id(), p.uniform("objectCamera"), 1, glm::value_ptr(objectCamera));
         glProgramUniformMatrix3fv(p.id(), p.uniform("viewToObject"), 1, GL_FALSE, glm::value_ptr(viewToObject));
-        o.samples->bind();
+        // psi_i's SH: for the light, unless traced, and for the view, unless from the front face.
+        o.samples->bind(!(variant.tracedLight && variant.viewFromFront));
         if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
         for (const GlProgram* program : {&p, &received})
             glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
