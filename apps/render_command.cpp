@@ -73,8 +73,6 @@ Command addRenderCommand(CLI::App& app) {
         std::unique_ptr<tbb::global_control> threads;
         if (o->threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
-        LoadedScene loaded = loadScene(scene, method.entry->needsSamples);
-        printWarnings(loaded.warnings);
         MethodSettings settings;
         settings.surface = !o->noSurface && scene.render.surface;
         settings.tolerance = o->tolerance;
@@ -88,9 +86,13 @@ Command addRenderCommand(CLI::App& app) {
         settings.moments = o->moments;
         settings.noiseTarget = o->noise;
         settings.seed = std::stoull(o->seed);
-        printWarnings(method.entry->create()->limitations(loaded, settings));  // before the work, not after
+        const std::unique_ptr<Method> renderer = method.entry->create();
+        renderer->prepare(scene, settings);  // while the scene loads
+        LoadedScene loaded = loadScene(scene, method.entry->needsSamples);
+        printWarnings(loaded.warnings);
+        printWarnings(renderer->limitations(loaded, settings));  // before the work, not after
         std::string servedBy;
-        const Image image = renderWith(*method.entry, loaded, settings, &servedBy);
+        const Image image = renderWith(*method.entry, *renderer, loaded, settings, &servedBy);
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);
         const std::string why = method.reason.empty() ? "" : ", chosen by auto: " + method.reason;
         size_t nonFinite = 0;

@@ -42,6 +42,11 @@ struct MethodSettings {
 class Method {
 public:
     virtual ~Method() = default;
+    // Starts what needs only the scene's description, so that it runs while the
+    // scene loads (ss: the OpenGL context, the frame and the compiled programs,
+    // 40 ms of the bunny's command). render() takes it over when given the same
+    // description and settings; otherwise it is dropped. Optional for callers.
+    virtual void prepare(const SceneDesc&, const MethodSettings&) {}
     // The scene as loadScene gives it, with sample sets when the method's entry
     // says it needs them. Throws Error for what the method cannot do.
     virtual Image render(const LoadedScene& scene, const MethodSettings& settings) = 0;

@@ -159,11 +159,15 @@ ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {
 
 Image renderWith(const MethodEntry& entry, const LoadedScene& scene, const MethodSettings& settings,
                  std::string* servedBy) {
+    return renderWith(entry, *entry.create(), scene, settings, servedBy);
+}
+
+Image renderWith(const MethodEntry& entry, Method& method, const LoadedScene& scene, const MethodSettings& settings,
+                 std::string* servedBy) {
     if (entry.needsSamples && !scene.hasSamples())
         throw Error(scene.desc.file.string(), "method '" + entry.name + "' needs the objects' sample sets");
-    const std::unique_ptr<Method> method = entry.create();
-    Image image = method->render(scene, settings);
-    if (servedBy) *servedBy = method->servedBy();
+    Image image = method.render(scene, settings);
+    if (servedBy) *servedBy = method.servedBy();
     return image;
 }
 

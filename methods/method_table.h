@@ -53,5 +53,8 @@ ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene);
 // Creates the method and renders. servedBy receives what served the frame, if asked.
 Image renderWith(const MethodEntry& entry, const LoadedScene& scene, const MethodSettings& settings,
                  std::string* servedBy = nullptr);
+// Renders with a method entry.create() made (and perhaps prepared, Method::prepare).
+Image renderWith(const MethodEntry& entry, Method& method, const LoadedScene& scene, const MethodSettings& settings,
+                 std::string* servedBy = nullptr);
 
 }  // namespace lucent

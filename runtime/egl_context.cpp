@@ -62,6 +62,10 @@ public:
         eglTerminate(display_);
     }
     const char* backendName() const override { return "egl"; }
+    void release() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+    void makeCurrent() override {
+        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) fail("eglMakeCurrent failed");
+    }
 
 private:
     EGLDisplay display_ = EGL_NO_DISPLAY;

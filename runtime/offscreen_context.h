@@ -17,6 +17,10 @@ class OffscreenContext {
 public:
     virtual ~OffscreenContext() = default;
     virtual const char* backendName() const = 0;
+    // A context is current in one thread at a time: release() in the thread that
+    // has it, then makeCurrent() in the one that takes it over (Throws Error).
+    virtual void release() = 0;
+    virtual void makeCurrent() = 0;
     // Throws Error("no usable OpenGL context: <backend>: <why>"). Auto tries EGL, then OSMesa.
     static std::unique_ptr<OffscreenContext> create(GlBackend backend);
 };

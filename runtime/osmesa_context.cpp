@@ -27,6 +27,12 @@ public:
     }
     ~OsmesaContext() override { OSMesaDestroyContext(context_); }
     const char* backendName() const override { return "osmesa"; }
+    // A null context and buffer unbind the calling thread's (Mesa's osmesa.c).
+    void release() override { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
+    void makeCurrent() override {
+        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
+            throw Error("no usable OpenGL context: osmesa: OSMesaMakeCurrent failed");
+    }
 
 private:
     OSMesaContext context_ = nullptr;

@@ -14,6 +14,68 @@ namespace lucent {
 // The width factors the accuracy benchmark measured (docs/accuracy.md: 1 to 2.5).
 constexpr float kMeasuredWidthFactors[2] = {1.0f, 2.5f};
 
+namespace {
+
+// What the frame is drawn with. The context must be current wherever the
+// renderer and the frame are destroyed, so the destructor takes it first.
+struct GlSession {
+    std::unique_ptr<OffscreenContext> context;
+    std::unique_ptr<OffscreenFrame> frame;
+    std::unique_ptr<ScatteringRenderer> renderer;
+    ~GlSession() {
+        try {
+            if (context) context->makeCurrent();
+        } catch (const Error&) {
+            // Deleting GL objects with no current context does nothing: nothing to do.
+        }
+        renderer.reset();
+        frame.reset();
+    }
+};
+
+// What a session depends on: another scene size or setting needs another one.
+struct SessionKey {
+    std::string backend;
+    double cutoff;
+    int width, height;
+    bool operator==(const SessionKey&) const = default;
+};
+
+SessionKey sessionKey(const SceneDesc& desc, const MethodSettings& settings) {
+    return {settings.backend, settings.cutoff, desc.camera.width, desc.camera.height};
+}
+
+std::unique_ptr<GlSession> openSession(const SessionKey& key) {
+    auto session = std::make_unique<GlSession>();
+    session->context = OffscreenContext::create(parseGlBackend(key.backend));
+    session->frame = std::make_unique<OffscreenFrame>(key.width, key.height);
+    session->renderer = std::make_unique<ScatteringRenderer>(key.cutoff);
+    return session;
+}
+
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+                             const std::vector<ScatteringGrid>& grids, std::string& backend,
+                             std::unique_ptr<GlSession> session);
+
+}  // namespace
+
+struct SsMethod::Prepared {
+    SessionKey key;
+    std::future<std::unique_ptr<GlSession>> session;
+};
+
+SsMethod::SsMethod() = default;
+SsMethod::~SsMethod() = default;
+
+void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
+    const SessionKey key = sessionKey(desc, settings);
+    prepared_ = std::make_unique<Prepared>(Prepared{key, std::async(std::launch::async, [key] {
+                                                          std::unique_ptr<GlSession> session = openSession(key);
+                                                          session->context->release();
+                                                          return session;
+                                                      })});
+}
+
 std::vector<std::string> SsMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
     std::vector<std::string> out = indexMatchedWarnings(scene, "ss");
     for (std::string& line : sampleLimitations(scene, settings)) out.push_back(std::move(line));
@@ -76,11 +138,24 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
 }
 
 Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
-    return renderSingleScattering(scene, settings, {}, backend_);
+    std::unique_ptr<GlSession> session;
+    if (prepared_) {
+        const std::unique_ptr<Prepared> prepared = std::move(prepared_);
+        if (prepared->key == sessionKey(scene.desc, settings)) session = prepared->session.get();
+    }
+    return renderSingleScattering(scene, settings, {}, backend_, std::move(session));
 }
 
 Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
                              const std::vector<ScatteringGrid>& grids, std::string& backend) {
+    return renderSingleScattering(scene, settings, grids, backend, nullptr);
+}
+
+namespace {
+
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+                             const std::vector<ScatteringGrid>& grids, std::string& backend,
+                             std::unique_ptr<GlSession> session) {
     if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "single scattering needs the objects' sample sets");
     // The traced light casts rays into every object: their ray casters (41 ms for
     // the bunny's 75k faces) are built while the OpenGL context comes up and the
@@ -90,11 +165,12 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
         casters = std::async(std::launch::async, [&scene] {
             for (const VolumeObject& o : scene.objects) o.boundary();
         });
-    const auto context = OffscreenContext::create(parseGlBackend(settings.backend));
-    backend = context->backendName();
+    if (session) session->context->makeCurrent();
+    else session = openSession(sessionKey(scene.desc, settings));
+    backend = session->context->backendName();
     const ViewSetup view = viewSetupFor(scene.desc.camera, scene.bounds());
-    OffscreenFrame frame(view.width, view.height);
-    ScatteringRenderer renderer(settings.cutoff);
+    const OffscreenFrame& frame = *session->frame;
+    ScatteringRenderer& renderer = *session->renderer;
     for (size_t i = 0; i < scene.objects.size(); ++i)
         renderer.addObject(translucentObjectFor(scene.objects[i], scene.samples[i]));
     for (const ScatteringGrid& g : grids) renderer.addScatteringGrid(g);
@@ -106,5 +182,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     renderer.draw(view, options);
     return frame.read();
 }
+
+}  // namespace
 
 }  // namespace lucent

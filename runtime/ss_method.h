@@ -8,6 +8,12 @@ namespace lucent {
 
 class SsMethod final : public Method {
 public:
+    SsMethod();
+    ~SsMethod() override;
+    // The OpenGL context, the frame and the renderer with its programs, made in
+    // a thread of their own while the scene loads (about 40 ms of the bunny's
+    // 800x800 command, docs/runtime.md); render() makes the context current in its thread.
+    void prepare(const SceneDesc& desc, const MethodSettings& settings) override;
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"
     // sampleLimitations, and boundaries taken as index-matched.
@@ -19,6 +25,8 @@ public:
 
 private:
     std::string backend_;
+    struct Prepared;
+    std::unique_ptr<Prepared> prepared_;
 };
 
 // The frame --method ss draws, plus grids of multiple scattering (--method lbl
