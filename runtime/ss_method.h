@@ -11,7 +11,7 @@ public:
     SsMethod();
     ~SsMethod() override;
     // The OpenGL context, the frame and the renderer with its programs, made in
-    // a thread of their own while the scene loads (about 40 ms of the bunny's
+    // a thread of their own while the scene loads (about 20 ms off the bunny's
     // 800x800 command, docs/runtime.md); render() makes the context current in its thread.
     void prepare(const SceneDesc& desc, const MethodSettings& settings) override;
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
