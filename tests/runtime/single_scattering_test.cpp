@@ -47,6 +47,13 @@ struct SphereScene {
         s.sceneFingerprint = 42;
         writeSampleFile(scene.objects[0].samples, s);
     }
+    // The draft preset with this many samples: the quick sphere of the tests
+    // that compare two ways of drawing it, not its accuracy.
+    void preprocessDraft(int samples) const {
+        PreprocessSettings settings = qualityPreset("draft");
+        settings.samples = samples;
+        preprocess(settings);
+    }
     Image reference() const {
         ReferenceSettings settings;
         settings.tolerance = 1e-4;
@@ -216,9 +223,7 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
 TEST(SingleScattering, OsmesaAndEglGiveTheSameImage) {
     test::ScratchDir dir;
     SphereScene sphere(dir, 64);
-    PreprocessSettings s = qualityPreset("draft");
-    s.samples = 2000;
-    sphere.preprocess(s);
+    sphere.preprocessDraft(2000);
     const Image a = sphere.ss("osmesa"), b = sphere.ss("egl");
     float peak = 0.0f, worst = 0.0f;
     for (size_t i = 0; i < a.pixels.size(); ++i)
@@ -237,9 +242,7 @@ TEST(SingleScattering, APreparedContextDrawsTheSameImage) {
     // the same programs run on the same data.
     test::ScratchDir dir;
     SphereScene sphere(dir, 64);
-    PreprocessSettings s = qualityPreset("draft");
-    s.samples = 2000;
-    sphere.preprocess(s);
+    sphere.preprocessDraft(2000);
     const LoadedScene loaded = loadScene(sphere.scene, true);
     for (const std::string backend : {"egl", "osmesa"}) {
         SCOPED_TRACE(backend);
@@ -271,9 +274,7 @@ TEST(SingleScattering, CachedReceivedLightMatchesThePerFrameComputation) {
     // every frame in the vertex shader. At g = 1e-7 the two must agree.
     test::ScratchDir dir;
     SphereScene sphere(dir, 64);
-    PreprocessSettings s = qualityPreset("draft");
-    s.samples = 2000;
-    sphere.preprocess(s);
+    sphere.preprocessDraft(2000);
     const Image cached = sphere.ss();
     sphere.scene.objects[0].medium.g = 1e-7;
     std::vector<std::string> warnings;
