@@ -34,6 +34,9 @@ LUCENT_GPU_CONSTANT(kUnitCoefficients, 6)     // float texture buffer: SH coeffi
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)
+// Point-sprite proxies (scatter.geom, POINT_PROXIES) cover a box in up to this
+// many points along each screen axis.
+LUCENT_GPU_CONSTANT(kPointProxyTiles, 4)
 // The lights' uniform block holds this many: core/limits.h's kMaxLights (8 KiB).
 LUCENT_GPU_CONSTANT(kMaxLights, 256)
 

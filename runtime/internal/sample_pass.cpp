@@ -52,11 +52,16 @@ const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const
         {variant.slabs, "DENSITY_SLABS"},         {variant.regions, "SAMPLE_REGIONS"},
         {variant.viewFromFront, "VIEW_FROM_FRONT"}, {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
         {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"},
-        {variant.tracedLight, "TRACED_LIGHT"}};
+        {variant.tracedLight, "TRACED_LIGHT"},     {variant.pointProxies, "POINT_PROXIES"}};
     std::vector<std::string> defines;
     for (const auto& [wanted, define] : features)
         if (wanted) defines.push_back(define);
     return scatterPrograms_.get(defines);
+}
+
+bool SamplePass::pointProxiesCover(int width, int height) const {
+    const float covered = float(gpu::kPointProxyTiles) * largestPoint_;
+    return float(width) <= covered && float(height) <= covered;
 }
 
 bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {
@@ -104,6 +109,8 @@ void SamplePass::setFrameUniforms(const GlProgram& program, const FrameContext& 
     glProgramUniform1f(id, program.uniform("extinctionScale"), frame.options.extinctionScale);
     glProgramUniform1i(id, program.uniform("raySegments"), GLint(gpu::kUnitRaySegments));
     glProgramUniform1i(id, program.uniform("insideSegments"), GLint(gpu::kUnitInsideSegments));
+    glProgramUniform2f(id, program.uniform("viewportSize"), float(view.width), float(view.height));
+    glProgramUniform1f(id, program.uniform("largestPoint"), largestPoint_);
 }
 
 // Isotropic media: the received light does not depend on the view, so it is
@@ -151,6 +158,13 @@ void SamplePass::draw(FrameContext& frame) {
     glEnable(GL_DEPTH_CLAMP);  // the proxies' depth is clamped, never clipped (scatter.geom)
     glBindTextureUnit(gpu::kUnitRaySegments, frame.scatterTargets->raySegments());
     glBindTextureUnit(gpu::kUnitInsideSegments, frame.scatterTargets->insideSegments());
+    if (largestPoint_ == 0.0f) {
+        GLfloat range[2] = {1.0f, 1.0f};
+        glGetFloatv(GL_POINT_SIZE_RANGE, range);
+        largestPoint_ = range[1];
+    }
+    const bool points = pointProxiesCover(target.width, target.height);
+    if (points) glEnable(GL_PROGRAM_POINT_SIZE);
     const bool counting = frame.options.fragments != nullptr;
     GLuint queries[2] = {0, 0};
     if (counting) {
@@ -172,6 +186,7 @@ void SamplePass::draw(FrameContext& frame) {
         variant.receivedCached = o.g == 0.0;
         variant.oneChannel = o.samples->channels() == 1;
         variant.tracedLight = traced(o, frame);
+        variant.pointProxies = points;
         const GlProgram& p = scatterProgram(variant);
         const GlProgram& received = receivedProgram(variant.tracedLight);
         setFrameUniforms(p, frame);
@@ -203,6 +218,7 @@ void SamplePass::draw(FrameContext& frame) {
         o.samples->draw();
     }
     if (counting) countFragments(queries, *frame.options.fragments);
+    glDisable(GL_PROGRAM_POINT_SIZE);
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_DEPTH_TEST);
     glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, 0, 0);

@@ -39,6 +39,7 @@ private:
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass
     // (1 - cutoff in the circle, and the corners): the kept part is scaled to the whole.
     double keptMassInverse_;
+    float largestPoint_ = 0.0f;  // GL_POINT_SIZE_RANGE's upper end, asked on the first draw
     // The traced depths prepare() started, set on their samples when draw() begins.
     std::vector<std::pair<GpuSamples*, std::future<std::vector<glm::vec4>>>> pendingTraces_;
     // The scattering program's variants: the defines that shape scatter.vert,
@@ -51,7 +52,11 @@ private:
         bool receivedCached = false; // isotropic: the received light from received.comp (RECEIVED_CACHED)
         bool oneChannel = false;     // grey sigma_t: one integral for three channels (ONE_CHANNEL)
         bool tracedLight = false;    // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
+        bool pointProxies = false;   // pointProxiesCover(): a point sprite per proxy (POINT_PROXIES)
     };
+    // Whether kPointProxyTiles^2 points of the largest size cover a target of
+    // this size (scatter.geom, POINT_PROXIES); otherwise squares of two triangles.
+    bool pointProxiesCover(int width, int height) const;
     const GlProgram& scatterProgram(const ScatterVariant& variant) const;
     GlProgramVariants scatterPrograms_{{{GL_VERTEX_SHADER, "scatter.vert"},
                                         {GL_GEOMETRY_SHADER, "scatter.geom"},

@@ -1,12 +1,29 @@
 #version 450 core
-// Pass 2: each sample becomes a camera-facing square that covers the projection of
-// the sphere where its Gaussian exceeds the cut-off (tighter on screen than the
-// thesis's cube of side 2r, and 4 vertices instead of 14). The sphere grows by
-// the largest shift of the light's exponential variation (scatter.frag).
+#include "gpu_layout.h"
+// Pass 2: each sample becomes a square on the screen, a point sprite or two
+// triangles, that covers the projection of the sphere where its Gaussian
+// exceeds the cut-off (tighter on screen than the thesis's cube of side 2r). The sphere follows
+// the shift of the light's exponential variation (reach, scatter.frag).
 // A sample near the boundary of its region gets a second square for its mirror
 // image (preprocess/sample_weights.h), which reaches inside only that far.
 layout(points) in;
+#ifdef POINT_PROXIES
+// POINT_PROXIES (a program variant, SamplePass::scatterProgram): each proxy is
+// one point sprite, a square on the screen's axes around the exact bounding box
+// of the sphere's projection, instead of two triangles. llvmpipe shades a
+// primitive's 4x4 pixel blocks in two 8-wide halves: the blocks along the
+// square's diagonal were shaded twice, once for each triangle, and a point is
+// set up once. GL clips a point by its centre and limits its size
+// (GL_POINT_SIZE_RANGE, 255 pixels on llvmpipe), so the sprites cover the
+// bounding box's part inside the viewport in up to kPointProxyTiles^2 points
+// centred inside it; SamplePass uses this variant only on targets that many
+// points cover.
+layout(points, max_vertices = 2 * kPointProxyTiles * kPointProxyTiles) out;
+uniform vec2 viewportSize;  // pixels
+uniform float largestPoint;  // pixels
+#else
 layout(triangle_strip, max_vertices = 8) out;
+#endif
 
 in VertexOut {
     vec3 viewCentre;
@@ -44,6 +61,9 @@ uniform float keptMassInverse;
 // meets the sphere, and those that miss the objects. Conservative: along any ray
 // the planar depth grows, and no point of the sphere is nearer than this.
 float proxyDepth;
+#ifdef POINT_PROXIES
+float pointSize;
+#endif
 
 void emit(vec3 centre, vec4 clip) {
     o.viewCentre = centre;
@@ -55,17 +75,58 @@ void emit(vec3 centre, vec4 clip) {
     o.viewDepth = v[0].viewDepth;
     o.region = v[0].region;
     gl_Position = vec4(clip.xy, proxyDepth * clip.w, clip.w);
+#ifdef POINT_PROXIES
+    gl_PointSize = pointSize;
+#endif
     EmitVertex();
 }
 
-// A square around the sphere (centre c, radius r) outside which the Gaussian
-// centred at gaussian adds nothing.
+#ifdef POINT_PROXIES
+// The extent of the sphere's projection along one screen axis (x: k = 0, y: 1),
+// in window coordinates. The planes through the eye containing the other screen
+// axis and tangent to the sphere, a = m z, meet (c_a - m c_z)^2 = r^2 (1 + m^2);
+// the projection maps a / z = m to -P[k][k] m - P[2][k] in NDC.
+vec2 projectedExtent(vec3 c, float r, int k) {
+    float ca = c[k], cz = c.z;
+    float root = r * sqrt(max(ca * ca + cz * cz - r * r, 0.0));
+    float denominator = cz * cz - r * r;  // > 0: the sphere lies wholly in front
+    vec2 m = vec2(ca * cz - root, ca * cz + root) / denominator;
+    vec2 ndc = -projection[k][k] * m - projection[2][k];
+    return (vec2(min(ndc.x, ndc.y), max(ndc.x, ndc.y)) * 0.5 + 0.5) * viewportSize[k];
+}
+
+// Points centred inside the viewport that cover the box [lo, hi] (window
+// coordinates) clipped to it.
+void emitPoints(vec3 gaussian, vec2 lo, vec2 hi) {
+    lo = max(lo, vec2(0.0));
+    hi = min(hi, viewportSize);
+    if (any(lessThanEqual(hi, lo))) return;  // wholly off screen
+    vec2 size = hi - lo;
+    // A sprite covers the pixel centres inside it (left and bottom edges
+    // included), as a square covers them: the same pixels along the longer side.
+    ivec2 tiles = clamp(ivec2(ceil(size / largestPoint)), ivec2(1), ivec2(kPointProxyTiles));
+    vec2 tile = size / vec2(tiles);
+    pointSize = max(tile.x, tile.y);
+    for (int j = 0; j < tiles.y; ++j)
+        for (int i = 0; i < tiles.x; ++i) {
+            vec2 centre = lo + (vec2(i, j) + 0.5) * tile;
+            emit(gaussian, vec4(centre / viewportSize * 2.0 - 1.0, 0.0, 1.0));
+        }
+}
+#endif
+
+// A square around the sphere (centre c, radius r) outside which the integrand of
+// the Gaussian centred at gaussian adds nothing (reach).
 void proxy(vec3 gaussian, vec3 c, float r) {
     float d = length(c);
     vec4 nearest = projection * vec4(0.0, 0.0, min(c.z + r, 0.0), 1.0);
     proxyDepth = c.z + r < 0.0 ? clamp(nearest.z / nearest.w, -1.0, 1.0) : -1.0;
     if (d <= r * 1.0001 || c.z > -r) {
         // The camera is inside or the sphere crosses the camera plane: cover the screen.
+#ifdef POINT_PROXIES
+        emitPoints(gaussian, vec2(0.0), viewportSize);
+        return;
+#endif
         emit(gaussian, vec4(-1, -1, 0, 1));
         emit(gaussian, vec4(1, -1, 0, 1));
         emit(gaussian, vec4(-1, 1, 0, 1));
@@ -79,6 +140,11 @@ void proxy(vec3 gaussian, vec3 c, float r) {
     // took the viewer's frame from 212 to 261 ms, and one triangle, 60%, to 217:
     // llvmpipe shades 4x2 blocks whole and pays per triangle, docs/runtime.md.)
     vec3 axis = c / d;
+#ifdef POINT_PROXIES
+    vec2 x = projectedExtent(c, r, 0), y = projectedExtent(c, r, 1);
+    emitPoints(gaussian, vec2(x.x, y.x), vec2(x.y, y.y));
+    return;
+#endif
     vec3 u = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0)));
     vec3 w = cross(axis, u);
     float h = r * d / sqrt(d * d - r * r);
@@ -89,28 +155,56 @@ void proxy(vec3 gaussian, vec3 c, float r) {
     EndPrimitive();
 }
 
+// The sphere (xyz centre, w radius) outside which this proxy's integrand adds
+// nothing. scatter.frag integrates the Gaussian centred at g times the light's
+// exponential variation exp(G' . (x - g)), G' = G - sigma_t dir (sigma_t only
+// where the view attenuates relative to the centre's ray; attenuated from each
+// pixel's front face, VIEW_FROM_FRONT, the view's part only ever falls inside
+// the interval, so the light's part alone can carry the integrand beyond the
+// cut-off and viewDepth < 0 leaves it out): that is the same Gaussian
+// shifted to g + G' s^2 (and scaled), so its cut-off sphere of radius
+// cutoffSigmas s lies about the shifted centre, not about g. The shift differs
+// between the channels (their gradients and sigma_t) and, through dir, between
+// the pixels: the sphere holds every channel's shifted centre at the centre's
+// own ray, and grows by how far sigma_t s^2 dir turns across the proxy (the
+// chord between two rays is at most their angle, and asin x <= pi x / 2).
+vec4 reach(vec3 g) {
+    float s = v[0].width, s2 = s * s;
+    vec3 ray = normalize(g);
+    vec3 shift[3];
+    vec3 mean = vec3(0.0);
+    float view = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        float extinction = v[0].viewDepth >= 0.0 ? v[0].extinction[k] : 0.0;
+        shift[k] = (v[0].gradient[k] - extinction * ray) * s2;
+        mean += shift[k] / 3.0;
+        view = max(view, extinction);
+    }
+    float spread = 0.0;
+    for (int k = 0; k < 3; ++k) spread = max(spread, length(shift[k] - mean));
+    vec3 centre = g + mean;
+    float r = cutoffSigmas * s + spread;
+    float turn = 1.5707964 * (r / max(length(centre), 1e-30) + length(mean) / max(length(g), 1e-30));
+    return vec4(centre, r + view * s2 * min(turn, 2.0));
+}
+
 void main() {
     if (max(v[0].radiance.r, max(v[0].radiance.g, v[0].radiance.b)) <= 0.0) return;
-    float s = v[0].width;
-    // The shift of scatter.frag, G s^2, is at most (|G_light| + sigma_t) s^2.
-    // Attenuated from the front face the view's part only ever falls inside, so
-    // the light's part alone can carry the integrand beyond the cut-off.
-    float shift = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        float view = v[0].viewDepth >= 0.0 ? v[0].extinction[k] : 0.0;
-        shift = max(shift, (length(v[0].gradient[k]) + view) * s * s);
-    }
-    float r = cutoffSigmas * s + shift;
-    proxy(v[0].viewCentre, v[0].viewCentre, r);
-    // The boundary lies halfway to the image: past the cut-off, the image adds
-    // nothing inside. What it adds lies in the cap of its sphere beyond the
-    // boundary plane, at distance a >= d / 2 along the normal and |p|^2 <= r^2 - a^2
-    // across it; from the midpoint m that is (a - d / 2)^2 + |p|^2 <= r^2 - d a + d^2 / 4
-    // <= r^2 - d^2 / 4. So the cap lies in the sphere of radius sqrt(r^2 - d^2 / 4)
-    // about m, whose square is smaller by 1 - d^2 / 4 r^2 in area (by a third on
-    // average over the images' distances).
+    vec4 sphere = reach(v[0].viewCentre);
+    proxy(v[0].viewCentre, sphere.xyz, sphere.w);
+    // The image's integrand counts only on the sample's side of the boundary,
+    // which lies halfway to the image (the fragments integrate inside the
+    // sample's region alone). Of the image's sphere that keeps the cap beyond
+    // the boundary plane seen from its centre, when the centre lies a >= 0
+    // past it: the cap lies in the sphere of radius sqrt(r^2 - a^2) about the
+    // centre's foot on the plane, whose square is smaller by a^2 / r^2 in area.
     vec3 toImage = v[0].viewImage - v[0].viewCentre;
     float d = length(toImage);
-    if (d > 0.0 && d < 2.0 * cutoffSigmas * s)
-        proxy(v[0].viewImage, v[0].viewCentre + 0.5 * toImage, sqrt(max(r * r - 0.25 * d * d, 0.0)));
+    if (d > 0.0) {
+        vec4 image = reach(v[0].viewImage);
+        vec3 normal = toImage / d;
+        float a = dot(image.xyz - (v[0].viewCentre + 0.5 * toImage), normal);
+        if (a < image.w)
+            proxy(v[0].viewImage, image.xyz - max(a, 0.0) * normal, sqrt(image.w * image.w - max(a, 0.0) * max(a, 0.0)));
+    }
 }

@@ -1,17 +1,13 @@
-// The Gaussian cut-off moves light, it loses none: seen on screen a Gaussian is
-// a 2D Gaussian, and the square around the circle where it falls to epsilon of
-// its peak (radius r = s sqrt(2 ln(1 / epsilon))) keeps erf(r / (s sqrt 2))^2 of
-// its mass; the scattering pass scales what it keeps to the whole
-// (runtime/internal/scatter.geom). One Gaussian deep
-// inside a thin medium, far from every boundary, so that every ray through it
-// integrates it whole: the image's total light must not depend on epsilon.
-// Without the scaling, epsilon = 0.1 would lose 6.6% of it (a scaling by
-// 1 / (1 - epsilon), the circle's share, would add 3.8%).
+// The proxies that draw each Gaussian (runtime/internal/scatter.geom): the
+// cut-off moves light and loses none, and the point sprites keep it across the
+// viewport's edge and past the largest point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "core/error.h"
 
 #include "preprocess/preprocessor.h"
 #include "runtime/offscreen_context.h"
@@ -28,56 +24,87 @@ double totalGreen(const Image& image) {
     return sum;
 }
 
-TEST(GaussianCutoff, MovesLightButKeepsItsTotal) {
-    SceneDesc scene;
-    scene.camera.position = Vec3(0, 0, 4);
-    scene.camera.target = Vec3(0, 0, 0);
-    scene.camera.fovYDegrees = 30.0;
-    scene.camera.width = scene.camera.height = 128;
-    Light bulb;
-    bulb.position = Vec3(3, 3, 3);
-    bulb.power = Rgb(40.0);
-    scene.lights = {bulb};
-    test::ScratchDir dir;
-    scene.objects = {test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-1), Vec3(1)), 0.2, 0.8)};
-    std::vector<std::string> warnings;
-    const auto objects = loadObjects(scene, warnings);
-    PreprocessSettings settings = qualityPreset("draft");
-    settings.samples = 1500;
-    SampleSet set = preprocessObject(objects[0], settings);
-    // Keep the sample nearest the centre alone, 0.1 wide: its cut-off sphere
-    // (at most 4.8 widths at epsilon = 1e-5) stays 0.5 inside every face.
-    size_t nearest = 0;
-    for (size_t i = 1; i < set.size(); ++i)
-        if (glm::length(set.positions[i]) < glm::length(set.positions[nearest])) nearest = i;
-    ASSERT_LT(glm::length(set.positions[nearest]), 0.1f);
-    SampleSet one = set;
-    one.positions = {set.positions[nearest]};
-    one.radii = {set.radii[nearest]};
-    one.widths = {0.1f};
-    one.scattering = {set.scattering[nearest]};
-    one.extinction = {set.extinction[nearest]};
-    one.region = {set.region[nearest]};
-    one.image = {set.image[nearest]};
-    one.boundary = {set.boundary[nearest]};
-    one.truncationError = {set.truncationError[nearest]};
-    const size_t n = set.coefficientsPerSample();
-    one.sh.assign(set.sh.begin() + std::ptrdiff_t(nearest * n), set.sh.begin() + std::ptrdiff_t((nearest + 1) * n));
-
-    const auto context = OffscreenContext::create(GlBackend::Auto);
-    OffscreenFrame frame(128, 128);
-    const ViewSetup view = viewSetupFor(scene.camera, objects[0].mesh().bounds());
-    DrawOptions options;
-    options.surface = false;
-    options.scatterScale = 1;
-    auto total = [&](double cutoff) {
+// A box of thin medium seen from 4 units with one Gaussian 0.1 wide at its
+// centre: its cut-off sphere (at most 4.8 widths at epsilon = 1e-5) stays 0.5
+// inside every face, so every ray through it integrates it whole.
+struct OneGaussian {
+    OneGaussian() {
+        scene.camera.position = Vec3(0, 0, 4);
+        scene.camera.target = Vec3(0, 0, 0);
+        scene.camera.fovYDegrees = 30.0;
+        scene.camera.width = scene.camera.height = 128;
+        Light bulb;
+        bulb.position = Vec3(3, 3, 3);
+        bulb.power = Rgb(40.0);
+        scene.lights = {bulb};
+        scene.objects = {test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-1), Vec3(1)), 0.2, 0.8)};
+        std::vector<std::string> warnings;
+        objects = loadObjects(scene, warnings);
+        PreprocessSettings settings = qualityPreset("draft");
+        settings.samples = 1500;
+        SampleSet set = preprocessObject(objects[0], settings);
+        // Keep the sample nearest the centre alone, 0.1 wide.
+        size_t nearest = 0;
+        for (size_t i = 1; i < set.size(); ++i)
+            if (glm::length(set.positions[i]) < glm::length(set.positions[nearest])) nearest = i;
+        if (!(glm::length(set.positions[nearest]) < 0.1f)) throw Error("no sample near the box's centre");
+        one = set;
+        one.positions = {set.positions[nearest]};
+        one.radii = {set.radii[nearest]};
+        one.widths = {0.1f};
+        one.scattering = {set.scattering[nearest]};
+        one.extinction = {set.extinction[nearest]};
+        one.region = {set.region[nearest]};
+        one.image = {set.image[nearest]};
+        one.boundary = {set.boundary[nearest]};
+        one.truncationError = {set.truncationError[nearest]};
+        const size_t n = set.coefficientsPerSample();
+        one.sh.assign(set.sh.begin() + std::ptrdiff_t(nearest * n), set.sh.begin() + std::ptrdiff_t((nearest + 1) * n));
+    }
+    // The image at this size (full resolution), or of its columns [0, columns).
+    Image draw(int size, double cutoff, int columns = 0) const {
+        ViewSetup view = viewSetupFor(withSize(size), objects[0].mesh().bounds());
+        if (columns > 0) {
+            // The same camera's frustum cut to the window's first columns:
+            // x_ndc' = (x_ndc + 1) size / columns - 1.
+            glm::mat4 crop(1.0f);
+            crop[0][0] = float(size) / float(columns);
+            crop[3][0] = crop[0][0] - 1.0f;
+            view.projection = crop * view.projection;
+            view.width = columns;
+        }
+        OffscreenFrame frame(view.width, view.height);
+        DrawOptions options;
+        options.surface = false;
+        options.scatterScale = 1;
         ScatteringRenderer renderer(cutoff);
         renderer.addObject(translucentObjectFor(objects[0], one));
         renderer.setLights(scene.lights);
         frame.bindAndClear();
         renderer.draw(view, options);
-        return totalGreen(frame.read());
-    };
+        return frame.read();
+    }
+    Camera withSize(int size) const {
+        Camera camera = scene.camera;
+        camera.width = camera.height = size;
+        return camera;
+    }
+    test::ScratchDir dir;
+    SceneDesc scene;
+    std::vector<VolumeObject> objects;
+    SampleSet one;
+};
+
+// Seen on screen a Gaussian is a 2D Gaussian, and the square around the circle
+// where it falls to epsilon of its peak (radius r = s sqrt(2 ln(1 / epsilon)))
+// keeps erf(r / (s sqrt 2))^2 of its mass; the scattering pass scales what it
+// keeps to the whole. The image's total light must not depend on epsilon.
+// Without the scaling, epsilon = 0.1 would lose 6.6% of it (a scaling by
+// 1 / (1 - epsilon), the circle's share, would add 3.8%).
+TEST(GaussianCutoff, MovesLightButKeepsItsTotal) {
+    const OneGaussian gaussian;
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    auto total = [&](double cutoff) { return totalGreen(gaussian.draw(128, cutoff)); };
     const double whole = total(1e-5);
     ASSERT_GT(whole, 0.0);
     // The tails' shape changes by the perspective's second order (the sphere
@@ -86,6 +113,55 @@ TEST(GaussianCutoff, MovesLightButKeepsItsTotal) {
     std::printf("total light against epsilon = 1e-5: %.4f at 0.1, %.4f at 1e-2\n", coarse, defaultCutoff);
     EXPECT_NEAR(coarse, 1.0, 0.01);
     EXPECT_NEAR(defaultCutoff, 1.0, 0.01);
+}
+
+// scatter.geom draws each Gaussian's proxy as point sprites where they cover the
+// target, and GL drops a point whose centre lies outside the viewport: a
+// Gaussian across the viewport's edge must still light the pixels inside. Cut to
+// its first columns, the camera's image must be the full image's columns: the
+// same rays meet the same Gaussian. At 600 pixels and the default epsilon 1e-2
+// the proxy is one point 170 pixels wide, whose centre lies 10 pixels right of
+// the cut at 290 columns (the columns left of it hold about a third of the
+// light). Cut, the proxy's box is 75 by 170 pixels, and its point, 170 wide,
+// also covers the 47 columns left of the box, where the Gaussian is below the
+// cut-off: there the images may differ by up to epsilon of the peak, and hold
+// 0.12% of the light (Phi(-3.03) - Phi(-4.7), the Gaussian 28 pixels wide).
+TEST(GaussianCutoff, AProxyAcrossTheViewportsEdgeKeepsItsLightInside) {
+    const OneGaussian gaussian;
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    const int size = 600, columns = 290;
+    const Image full = gaussian.draw(size, 1e-2), cut = gaussian.draw(size, 1e-2, columns);
+    ASSERT_EQ(cut.width, columns);
+    double peak = 0.0, worst = 0.0, inside = 0.0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < columns; ++x) {
+            const float a = full.pixels[size_t(y) * size + x].g, b = cut.pixels[size_t(y) * columns + x].g;
+            peak = std::max(peak, double(a));
+            worst = std::max(worst, double(std::abs(a - b)));
+            inside += a;
+        }
+    ASSERT_GT(peak, 0.0);
+    EXPECT_GT(inside, 0.25 * totalGreen(full)) << "the cut keeps a good part of the Gaussian";
+    std::printf("cut: %.1f%% of the light, largest difference %.4f of the peak, total %.5f of the columns\n",
+                100.0 * inside / totalGreen(full), worst / peak, totalGreen(cut) / inside);
+    EXPECT_LE(worst, 1.01e-2 * peak);
+    EXPECT_NEAR(totalGreen(cut) / inside, 1.0, 0.01);
+}
+
+// A proxy wider than the largest point (255 pixels on llvmpipe) is tiled with
+// points; past kPointProxyTiles points of the largest size across the target,
+// the proxies are squares of two triangles. The Gaussian at 1000 pixels (a proxy
+// 282 pixels wide, two points across) and at 1100 (squares) must hold the same
+// light per pixel area (1e-5 measured): one point of 255 pixels would lose the
+// band between 2.7 and 3 sigma, 0.4% of it.
+TEST(GaussianCutoff, PointsAndSquaresHoldTheSameLight) {
+    const OneGaussian gaussian;
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    const double points = totalGreen(gaussian.draw(1000, 1e-2)) / (1000.0 * 1000.0);
+    const double squares = totalGreen(gaussian.draw(1100, 1e-2)) / (1100.0 * 1100.0);
+    ASSERT_GT(points, 0.0);
+    std::printf("light per pixel area, squares at 1100 against points at 1000: %.6f\n", squares / points);
+    EXPECT_NEAR(squares / points, 1.0, 1e-3);
 }
 
 }  // namespace
