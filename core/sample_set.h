@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "core/math.h"
@@ -90,6 +91,6 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& samples
 // does not match the counts, a bad checksum or a non-finite value.
 SampleSet readSampleFile(const std::filesystem::path& file);
 // The same checks on bytes already in memory; name is used in messages.
-SampleSet parseSampleFile(const std::vector<char>& bytes, const std::string& name);
+SampleSet parseSampleFile(std::span<const char> bytes, const std::string& name);
 
 }  // namespace lucent

@@ -3,15 +3,13 @@
 // so the seed corpus holds valid files for the fuzzer to mutate.
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #include "core/error.h"
 #include "core/sample_set.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
-        const std::vector<char> bytes(reinterpret_cast<const char*>(data), reinterpret_cast<const char*>(data) + size);
-        lucent::parseSampleFile(bytes, "fuzz.lsf");
+        lucent::parseSampleFile({reinterpret_cast<const char*>(data), size}, "fuzz.lsf");
     } catch (const lucent::Error&) {
     }
     return 0;
