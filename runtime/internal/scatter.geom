@@ -121,8 +121,10 @@ void proxy(vec3 gaussian, vec3 c, float r) {
     float d = length(c);
     vec4 nearest = projection * vec4(0.0, 0.0, min(c.z + r, 0.0), 1.0);
     proxyDepth = c.z + r < 0.0 ? clamp(nearest.z / nearest.w, -1.0, 1.0) : -1.0;
-    if (d <= r * 1.0001 || c.z > -r) {
-        // The camera is inside or the sphere crosses the camera plane: cover the screen.
+    if (d <= r * 1.0001 || c.z > -r * 1.0001) {
+        // The camera is inside or the sphere crosses (or touches) the camera
+        // plane: cover the screen. Past it, c_z^2 - r^2 >= 2e-4 r^2, which
+        // projectedExtent divides by.
 #ifdef POINT_PROXIES
         emitPoints(gaussian, vec2(0.0), viewportSize);
         return;
