@@ -92,6 +92,36 @@ TEST(Formats, PngDecodedByLibpngHoldsTheExposedSrgbValues) {
                     << x << "," << y << "," << c;
 }
 
+// Every code on the way: a ramp through [0, 1.2] in 20 000 steps, four decades of
+// it near black (where sRGB is linear) and the rest up to white and past it. The
+// writer encodes in float and this test in double, so a value within rounding of
+// a code's edge may take the neighbouring code; anything more is a wrong code.
+TEST(Formats, PngRampHoldsTheSrgbCodeOfEveryValue) {
+    test::ScratchDir dir;
+    Image ramp(20000, 1);
+    for (int x = 0; x < ramp.width; ++x) {
+        const double t = double(x) / (ramp.width - 1);
+        const double v = x < ramp.width / 2 ? 1e-5 * std::pow(1e4, 2.0 * t) : 1.2 * (2.0 * t - 1.0) + 0.1 * (2.0 - 2.0 * t);
+        ramp.at(x, 0) = glm::vec3(float(v), float(0.5 * v), float(2.0 * v));
+    }
+    writeImage(dir.path() / "ramp.png", ramp, 1.0f);
+    const test::Png png = test::readPng(dir.path() / "ramp.png");
+    ASSERT_EQ(png.width, ramp.width);
+    int exact = 0, codes = 0;
+    std::vector<bool> seen(256, false);
+    for (int x = 0; x < ramp.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+            const int expected = srgb8(double(ramp.at(x, 0)[c]));
+            const int got = png.at(x, 0)[c];
+            ASSERT_LE(std::abs(got - expected), 1) << x << "," << c;
+            exact += got == expected;
+            if (!seen[size_t(got)]) ++codes;
+            seen[size_t(got)] = true;
+        }
+    EXPECT_GE(exact, int(0.999 * 3 * ramp.width));
+    EXPECT_EQ(codes, 256);  // the ramp passes through every code
+}
+
 TEST(Formats, ExrDecodedByOpenExrHoldsTheLinearFloats) {
     test::ScratchDir dir;
     const Image image = threeByTwo();
