@@ -20,6 +20,8 @@ install(TARGETS lucent_core lucent_glad lucent_runtime lucent_offscreen lucent_p
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${LUCENT_INSTALL_INCLUDE})
 install(TARGETS lucent RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The OpenVDB plug-ins (core/plugin_library.h): beside the libraries that open them.
+install(TARGETS lucent_core_openvdb lucent_preprocess_openvdb LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 if(LUCENT_HAVE_OPENCL)
   # The hybrid (multiple scattering on OpenCL): its solver's header only; OpenCL stays private.
   set_target_properties(lucent_hybrid PROPERTIES EXPORT_NAME hybrid)

@@ -1,13 +1,11 @@
 #include "core/density_field.h"
 
-#include <openvdb/openvdb.h>
-
 #include <algorithm>
 #include <fstream>
 
 #include "core/error.h"
 #include "core/input_file.h"
-#include "core/isolated.h"
+#include "core/internal/openvdb_plugin.h"
 
 namespace lucent {
 
@@ -148,49 +146,8 @@ std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int 
 }
 
 std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName) {
-    const std::string name = file.string();
-    const uint64_t fileSize = regularFileSize(file, "OpenVDB file");
-    openvdb::initialize();
-    // OpenVDB asserts on some corrupt files (fuzz/grid_fuzzer.cpp): read it in a child first.
-    const std::string death = deathInChild([&] {
-        openvdb::io::File vdb(name);
-        vdb.open();
-        vdb.readGrid(gridName);
-    }, 5.0 + double(fileSize) / 2e6);
-    if (!death.empty()) throw Error(name, "corrupt OpenVDB file (the OpenVDB reader died on it: " + death + ")");
-    openvdb::FloatGrid::Ptr grid;
-    try {
-        openvdb::io::File vdb(name);
-        vdb.open();
-        openvdb::GridBase::Ptr base = vdb.readGrid(gridName);
-        vdb.close();
-        grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    } catch (const std::exception& e) {
-        throw Error(name, std::string("cannot read OpenVDB grid '") + gridName + "': " + e.what());
-    }
-    if (!grid) throw Error(name, "grid '" + gridName + "' is not a float grid");
-    if (!grid->transform().isLinear()) throw Error(name, "grid '" + gridName + "' has a non-linear transform");
-    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
-    if (box.empty()) throw Error(name, "grid '" + gridName + "' has no active voxels");
-    const openvdb::Coord dim = box.dim();
-    checkMemoryBudget(uint64_t(dim.x()) * uint64_t(dim.y()) * uint64_t(dim.z()) * sizeof(float), file,
-                      "grid '" + gridName + "' densified over its active box of " + std::to_string(dim.x()) + "x" +
-                          std::to_string(dim.y()) + "x" + std::to_string(dim.z()) + " voxels");
-    std::vector<float> values(size_t(dim.x()) * dim.y() * dim.z());
-    auto access = grid->getConstAccessor();
-    size_t n = 0;
-    for (int k = box.min().z(); k <= box.max().z(); ++k)
-        for (int j = box.min().y(); j <= box.max().y(); ++j)
-            for (int i = box.min().x(); i <= box.max().x(); ++i) {
-                const float v = access.getValue(openvdb::Coord(i, j, k));
-                if (!std::isfinite(v) || v < 0.0f) throw Error(name, "grid '" + gridName + "' holds a negative or non-finite density");
-                values[n++] = v;
-            }
-    const openvdb::Vec3d lo = grid->indexToWorld(box.min()), hi = grid->indexToWorld(box.max());
-    Bounds3 bounds;
-    bounds.extend(Vec3(lo.x(), lo.y(), lo.z()));
-    bounds.extend(Vec3(hi.x(), hi.y(), hi.z()));
-    return std::make_unique<GridDensity>(dim.x(), dim.y(), dim.z(), bounds, std::move(values));
+    DenseFloatGrid grid = coreOpenVdbPlugin().readFloatGrid(file, gridName);
+    return std::make_unique<GridDensity>(grid.nodes[0], grid.nodes[1], grid.nodes[2], grid.bounds, std::move(grid.values));
 }
 
 }  // namespace lucent

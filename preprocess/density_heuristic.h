@@ -14,9 +14,10 @@
 //
 // Note: along any ray w . grad tau(x, w) = -sigma_t(x), so div T = sigma_t(x) *
 // integral exp(-tau) dw exactly; the tests use this identity as an independent check.
-#include <openvdb/openvdb.h>
-
+//
+// The grids are OpenVDB's, in the plug-in with the distance field (distance_field.h).
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/volume_object.h"
@@ -31,26 +32,26 @@ struct HeuristicSettings {
     uint64_t seed = 1;
 };
 
-struct HeuristicField {
-    openvdb::Vec3SGrid::Ptr firstMoment;  // T
-    openvdb::FloatGrid::Ptr receivable;   // integral exp(-tau) dw / (4 pi), in [0, 1]
-    openvdb::FloatGrid::Ptr divergence;   // div T
-    Vec3 centre;                          // the grids' coordinates are relative to it,
-    double scale = 1.0;                   // and divided by this (DistanceField::scale)
-    uint64_t raysCast = 0;
-};
-
 struct HeuristicPoint {
     double density = 0.0;      // |div T|
-    double receivable = 0.0;
+    double receivable = 0.0;   // integral exp(-tau) dw / (4 pi), in [0, 1]
     bool culled = true;
 };
 
-// The expensive part (d rays per voxel): T and the receivable light on the band.
-HeuristicField sampleFirstMoment(const VolumeObject& object, const DistanceField& field,
-                                 const HeuristicSettings& settings);
-// div T by central differences, then rho and culling at each point.
-std::vector<HeuristicPoint> densityAtPoints(HeuristicField& field, const std::vector<Vec3>& points,
-                                            const HeuristicSettings& settings);
+// T and the receivable light on the distance field's band.
+class HeuristicField {
+public:
+    virtual ~HeuristicField();
+    // div T by central differences, then rho and culling at each point.
+    virtual std::vector<HeuristicPoint> densityAtPoints(const std::vector<Vec3>& points,
+                                                        const HeuristicSettings& settings) const = 0;
+    // T, trilinearly interpolated.
+    virtual Vec3 firstMomentAt(const Vec3& point) const = 0;
+    uint64_t raysCast = 0;
+};
+
+// The expensive part (d rays per voxel).
+std::unique_ptr<HeuristicField> sampleFirstMoment(const VolumeObject& object, const DistanceField& field,
+                                                  const HeuristicSettings& settings);
 
 }  // namespace lucent

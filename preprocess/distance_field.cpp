@@ -1,66 +1,35 @@
 #include "preprocess/distance_field.h"
 
-#include <openvdb/tools/MeshToVolume.h>
-#include <openvdb/tools/VolumeToMesh.h>
-
 #include <algorithm>
-#include <cmath>
+
+#include "core/plugin_library.h"
+#include "preprocess/internal/openvdb_plugin.h"
 
 namespace lucent {
 
 namespace {
+const char kAnchor = 0;  // an address inside liblucent_preprocess
+}  // namespace
+
+const PreprocessOpenVdbPlugin& preprocessOpenVdbPlugin() {
+    static const auto* table = static_cast<const PreprocessOpenVdbPlugin*>(
+        pluginTable("liblucent_preprocess_openvdb.so", "lucentPreprocessOpenVdbPlugin", &kAnchor));
+    return *table;
+}
+
+std::unique_ptr<DistanceField> DistanceField::create(const TriangleMesh& boundary, double voxelSize, double deepest) {
+    return preprocessOpenVdbPlugin().createDistanceField(boundary, voxelSize, deepest);
+}
 
 // The grid lives in the object's own frame: centred on its bounding box and in
 // units of its diagonal. OpenVDB's voxel lattice and its tolerances are then the
 // same for the object at any scale and position, so the layers, and the samples
 // on them, scale with the scene (OpenVDB also refuses voxels below about 1e-8).
-double unitScaleFor(const TriangleMesh& mesh) { return std::max(mesh.bounds().diagonal(), 1e-300); }
+DistanceField::DistanceField(const TriangleMesh& boundary, double voxelSize)
+    : centre_(boundary.bounds().center()),
+      scale_(std::max(boundary.bounds().diagonal(), 1e-300)),
+      voxelSize_(voxelSize) {}
 
-}  // namespace
-
-DistanceField::DistanceField(const TriangleMesh& boundary, double voxelSize, double deepest)
-    : centre_(boundary.bounds().center()), scale_(unitScaleFor(boundary)), voxelSize_(voxelSize) {
-    openvdb::initialize();
-    std::vector<openvdb::Vec3s> points;
-    points.reserve(boundary.positions.size());
-    for (const Vec3& p : boundary.positions) {
-        const Vec3 q = (p - centre_) / scale_;
-        points.emplace_back(float(q.x), float(q.y), float(q.z));
-    }
-    std::vector<openvdb::Vec3I> triangles;
-    triangles.reserve(boundary.triangles.size());
-    for (const auto& t : boundary.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-    const std::vector<openvdb::Vec4I> noQuads;
-    // The interior band reaches a few voxels past the deepest layer, so that marching
-    // cubes sees the sign change there and central differences have neighbours.
-    const float interiorBand = float(std::ceil(deepest / voxelSize) + 3.0);
-    const auto transform = openvdb::math::Transform::createLinearTransform(voxelSize / scale_);
-    grid_ = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, noQuads,
-                                                                         3.0f, interiorBand);
-}
-
-std::vector<OffsetLayer> DistanceField::offsetLayers(const std::vector<double>& depths) const {
-    std::vector<OffsetLayer> layers;
-    for (double depth : depths) {
-        std::vector<openvdb::Vec3s> vertices;
-        std::vector<openvdb::Vec3I> tris;
-        std::vector<openvdb::Vec4I> quads;
-        openvdb::tools::volumeToMesh(*grid_, vertices, tris, quads, -depth / scale_, 0.0);  // inside is negative
-        if (vertices.empty()) break;
-        OffsetLayer layer;
-        layer.depth = depth;
-        layer.surface.positions.reserve(vertices.size());
-        for (const auto& v : vertices) layer.surface.positions.push_back(toWorld(Vec3(v.x(), v.y(), v.z())));
-        auto& out = layer.surface.triangles;
-        out.reserve(tris.size() + 2 * quads.size());
-        for (const auto& t : tris) out.push_back({t.x(), t.y(), t.z()});
-        for (const auto& q : quads) {
-            out.push_back({q[0], q[1], q[2]});
-            out.push_back({q[0], q[2], q[3]});
-        }
-        layers.push_back(std::move(layer));
-    }
-    return layers;
-}
+DistanceField::~DistanceField() = default;
 
 }  // namespace lucent

@@ -194,7 +194,7 @@ LayerStack buildLayers(const VolumeObject& object, const PreprocessSettings& set
     // One distance field serves the layers and the heuristic. Its voxels are 1.5 r:
     // fine enough for marching cubes to follow the surface at the scale samples
     // resolve, and for central differences of T, which varies over a mean free path.
-    stack.distance = std::make_unique<DistanceField>(
+    stack.distance = DistanceField::create(
         object.mesh(), 1.5 * r, (stack.depths.empty() ? 0.0 : stack.depths.back()) + stack.spacing);
     stack.layers = stack.distance->offsetLayers(stack.depths);
     if (stack.layers.empty())
@@ -467,10 +467,10 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     heuristic.extinction = minSigmaT;
     heuristic.cullEpsilon = settings.cullEpsilon;
     heuristic.seed = settings.seed;
-    HeuristicField heuristicField = sampleFirstMoment(object, *stack.distance, heuristic);
-    t.heuristicRays = heuristicField.raysCast;
+    const std::unique_ptr<HeuristicField> heuristicField = sampleFirstMoment(object, *stack.distance, heuristic);
+    t.heuristicRays = heuristicField->raysCast;
     t.firstMoments = clock.lap();
-    const std::vector<HeuristicPoint> density = densityAtPoints(heuristicField, stack.surface.positions, heuristic);
+    const std::vector<HeuristicPoint> density = heuristicField->densityAtPoints(stack.surface.positions, heuristic);
     t.divergence = clock.lap();
 
     const std::vector<double> relativeRadius = relativeRadii(density, settings.scheme);

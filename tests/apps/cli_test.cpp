@@ -456,6 +456,25 @@ TEST(Cli, FallsBackFromEglToOsmesa) {
     EXPECT_NE(run.stderrText.find("method ss on osmesa"), std::string::npos) << run.stderrText;
 }
 
+// OpenVDB binds 57 000 symbols when it is loaded (50 ms): only what builds or
+// reads grids opens it (core/plugin_library.h). LD_DEBUG=files has the dynamic
+// loader name every library it opens, preprocessing's showing that it would see
+// OpenVDB were it loaded.
+TEST(Cli, OnlyWhatNeedsOpenVdbLoadsIt) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    const auto preprocess =
+        test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300", "LD_DEBUG=files");
+    ASSERT_EQ(preprocess.exitCode, 0);
+    EXPECT_NE(preprocess.stderrText.find("liblucent_preprocess_openvdb.so"), std::string::npos);
+    EXPECT_NE(preprocess.stderrText.find("libopenvdb.so"), std::string::npos);
+    const auto render = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.png").string() +
+                                            " --method ss --width 8 --height 8",
+                                        "LD_DEBUG=files");
+    ASSERT_EQ(render.exitCode, 0);
+    EXPECT_EQ(render.stderrText.find("openvdb"), std::string::npos);
+}
+
 // --scheme published writes the thesis's scheme, which info reports.
 TEST(Cli, PublishedSchemeReachesTheSampleFile) {
     test::ScratchDir dir;

@@ -1,7 +1,6 @@
 #include "preprocess/density_heuristic.h"
 
 #include <gtest/gtest.h>
-#include <openvdb/tools/Interpolation.h>
 
 #include "core/rng.h"
 #include "core/sphere_directions.h"
@@ -13,23 +12,18 @@ namespace {
 struct Heuristic {
     Heuristic(const std::string& model, double sigma, double voxel, double depth, int directions = 128)
         : object(test::simpleObject(test::modelsDir() / model, sigma), warnings),
-          distance(object.mesh(), voxel, depth) {
+          distance(DistanceField::create(object.mesh(), voxel, depth)) {
         settings.directions = directions;
         settings.extinction = sigma;
-        field = sampleFirstMoment(object, distance, settings);
+        field = sampleFirstMoment(object, *distance, settings);
     }
-    std::vector<HeuristicPoint> at(const std::vector<Vec3>& points) { return densityAtPoints(field, points, settings); }
-    Vec3 firstMoment(const Vec3& x) const {
-        const openvdb::tools::GridSampler<openvdb::Vec3SGrid, openvdb::tools::BoxSampler> s(*field.firstMoment);
-        const Vec3 q = (x - field.centre) / field.scale;
-        const auto v = s.wsSample(openvdb::Vec3d(q.x, q.y, q.z));
-        return Vec3(v.x(), v.y(), v.z());
-    }
+    std::vector<HeuristicPoint> at(const std::vector<Vec3>& points) { return field->densityAtPoints(points, settings); }
+    Vec3 firstMoment(const Vec3& x) const { return field->firstMomentAt(x); }
     std::vector<std::string> warnings;
     VolumeObject object;
-    DistanceField distance;
+    std::unique_ptr<DistanceField> distance;
     HeuristicSettings settings;
-    HeuristicField field;
+    std::unique_ptr<HeuristicField> field;
 };
 
 TEST(DensityHeuristic, FirstMomentPointsOutAlongTheNormalOfALargeSphere) {

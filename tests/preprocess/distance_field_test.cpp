@@ -16,7 +16,7 @@ void expectLayersAtTheirDepth(const std::string& model, const std::vector<double
     std::vector<std::string> warnings;
     const TriangleMesh mesh = loadClosedMesh(test::modelsDir() / model, warnings);
     const MeshRaycaster boundary(mesh);
-    const auto layers = DistanceField(mesh, voxel, depths.back()).offsetLayers(depths);
+    const auto layers = DistanceField::create(mesh, voxel, depths.back())->offsetLayers(depths);
     ASSERT_EQ(layers.size(), depths.size()) << model;
     for (const auto& layer : layers) {
         ASSERT_FALSE(layer.surface.positions.empty());
@@ -44,7 +44,7 @@ TEST(DistanceField, ScannedModelLayersSitAtTheirOffset) {
 TEST(DistanceField, StopsBelowTheDeepestPoint) {
     std::vector<std::string> warnings;
     const TriangleMesh mesh = loadClosedMesh(test::modelsDir() / "sphere.obj", warnings);
-    const auto layers = DistanceField(mesh, 0.05, 1.5).offsetLayers({0.5, 0.9, 1.2, 1.5});
+    const auto layers = DistanceField::create(mesh, 0.05, 1.5)->offsetLayers({0.5, 0.9, 1.2, 1.5});
     EXPECT_EQ(layers.size(), 2u);
 }
 
