@@ -130,10 +130,7 @@ TEST(HostileInput, ReferenceRefusesOpticalSizesItCannotResolve) {
     SceneDesc scene;
     scene.file = "scene.json";
     scene.camera.width = scene.camera.height = 4;
-    Light light;
-    light.position = Vec3(3.0);
-    light.power = Rgb(10.0);
-    scene.lights = {light};
+    scene.lights = {test::pointLight(Vec3(3.0), Rgb(10.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 1e10)};
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);

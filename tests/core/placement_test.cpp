@@ -153,10 +153,7 @@ TEST(Placement, TheReferenceSeesThePlacedObject) {
     placed.camera.position = Vec3(0.5, 1.0, 6.0);
     placed.camera.target = kTranslate;
     placed.camera.width = placed.camera.height = 40;
-    Light bulb;
-    bulb.position = Vec3(3, 3, 2);
-    bulb.power = Rgb(30.0);
-    placed.lights = {bulb};
+    placed.lights = {test::pointLight(Vec3(3, 3, 2), Rgb(30.0))};
     ObjectDesc o = test::simpleObject(test::modelsDir() / "bunny.off", 4.0, 0.8);
     o.surface = SurfaceDesc{};
     o.transform = makeSimilarity(kScale, kAxis, kDegrees, kTranslate);

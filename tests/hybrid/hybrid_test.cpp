@@ -241,9 +241,7 @@ TEST(MultipleScattering, ProbesStopTheLatticeWithinItsTolerance) {
     // grid within a few times that of a solve run to 1e-7.
     std::vector<std::string> warnings;
     const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.95), warnings);
-    Light light;
-    light.position = Vec3(3, 3, 3);
-    light.power = Rgb(40.0);
+    const Light light = test::pointLight(Vec3(3, 3, 3), Rgb(40.0));
     MultipleScattering solver;
     HybridSettings s;
     s.resolution = 24;

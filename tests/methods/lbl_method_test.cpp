@@ -26,13 +26,8 @@ Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::s
                      double g = 0.0) {
     SceneDesc scene;
     scene.file = "sphere.json";
-    scene.camera.position = Vec3(0, 0, 5);
-    scene.camera.fovYDegrees = 30;
-    scene.camera.width = scene.camera.height = 32;
-    Light light;
-    light.position = Vec3(3, 3, 3);
-    light.power = Rgb(40.0);
-    scene.lights = {light};
+    scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, 32);
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", sigmaT, albedo)};
     scene.objects[0].medium.g = g;
     LoadedScene loaded = loadScene(scene, false);

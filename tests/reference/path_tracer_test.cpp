@@ -123,13 +123,8 @@ TEST(PathTracer, ThinConservativeSlabAtGrazingIncidenceMatchesDisortProblem1b) {
 // sphere, an RGB one (one path per channel) and a layered density (delta tracking).
 void expectSingleScatteringMatchesReference(ObjectDesc object) {
     SceneDesc scene;
-    scene.camera.position = Vec3(0.3, 0.2, 5);
-    scene.camera.fovYDegrees = 30;
-    scene.camera.width = scene.camera.height = 16;
-    Light light;
-    light.position = Vec3(3, 3, 3);
-    light.power = Rgb(10.0);
-    scene.lights = {light};
+    scene.camera = test::squareCamera(Vec3(0.3, 0.2, 5), Vec3(0), 30, 16);
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
     scene.objects = {object};
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
@@ -172,13 +167,8 @@ TEST(PathTracer, NoiseTargetStopsEachPixelAtItsError) {
     // having taken fewer paths than the cap where the target is easy, and the
     // image agrees with a fixed-count render within their joint noise.
     SceneDesc scene;
-    scene.camera.position = Vec3(0, 0, 5);
-    scene.camera.fovYDegrees = 30;
-    scene.camera.width = scene.camera.height = 12;
-    Light light;
-    light.position = Vec3(3, 3, 3);
-    light.power = Rgb(10.0);
-    scene.lights = {light};
+    scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, 12);
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.8)};
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
@@ -226,10 +216,7 @@ TEST(PathTracer, HenyeyGreensteinSamplesHaveTheMeanCosineG) {
 TEST(PathTracer, SameSeedSameImageForAnyThreadCount) {
     SceneDesc scene;
     scene.camera.width = scene.camera.height = 8;
-    Light light;
-    light.position = Vec3(3, 3, 3);
-    light.power = Rgb(10.0);
-    scene.lights = {light};
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.9)};
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);

@@ -71,10 +71,7 @@ TEST(ReferenceOracle, LinearGridIsTheMediumOfManyThinLayers) {
     SceneDesc scene;
     scene.camera.position = Vec3(0.4, 0.3, 5);
     scene.camera.width = scene.camera.height = 12;
-    Light bulb;
-    bulb.position = Vec3(3, 3, 3);
-    bulb.power = Rgb(10.0);
-    scene.lights = {bulb};
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
     std::vector<std::string> warnings;
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.6)};
     const Bounds3 box = loadObjects(scene, warnings)[0].mesh().bounds();
@@ -162,9 +159,7 @@ TEST(ReferenceOracle, SurfaceTermIsEnergyNormalisedPhong) {
     s.shininess = 20.0;
     cube.surface = s;
     scene.objects = {cube};
-    Light bulb;
-    bulb.position = Vec3(0.5, 1.5, 3.0);
-    bulb.power = Rgb(7.0);
+    const Light bulb = test::pointLight(Vec3(0.5, 1.5, 3.0), Rgb(7.0));
     scene.lights = {bulb};
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);
@@ -194,9 +189,7 @@ TEST(ReferenceOracle, LightInsideTheObjectMatchesAnIndependentQuadrature) {
     const double sigma = 1.2, albedo = 0.8, I = 3.0;
     SceneDesc scene;
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", sigma, albedo)};
-    Light bulb;
-    bulb.position = Vec3(0.3, -0.2, 0.1);
-    bulb.power = Rgb(I);
+    const Light bulb = test::pointLight(Vec3(0.3, -0.2, 0.1), Rgb(I));
     scene.lights = {bulb};
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);

@@ -15,10 +15,7 @@ namespace {
 
 SceneDesc sceneWith(const std::string& mesh, double sigmaT, double albedo, const Light& light) {
     SceneDesc scene;
-    scene.camera.position = Vec3(0.3, 0.2, 5);
-    scene.camera.target = Vec3(0);
-    scene.camera.fovYDegrees = 30;
-    scene.camera.width = scene.camera.height = 24;
+    scene.camera = test::squareCamera(Vec3(0.3, 0.2, 5), Vec3(0), 30, 24);
     scene.lights = {light};
     scene.objects = {test::simpleObject(test::modelsDir() / mesh, sigmaT, albedo)};
     return scene;
@@ -72,9 +69,7 @@ TEST(ReferenceRenderer, CubeUnderDirectionalLightMatchesClosedForm) {
 
 TEST(ReferenceRenderer, SphereUnderPointLightMatchesIndependentQuadrature) {
     const double sigma = 2.0, albedo = 0.75, I = 10.0;
-    Light bulb;
-    bulb.position = Vec3(3, 3, 3);
-    bulb.power = Rgb(I);
+    const Light bulb = test::pointLight(Vec3(3, 3, 3), Rgb(I));
     const SceneDesc scene = sceneWith("sphere.obj", sigma, albedo, bulb);
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);
@@ -119,9 +114,7 @@ TEST(ReferenceRenderer, SphereUnderPointLightMatchesIndependentQuadrature) {
 }
 
 TEST(ReferenceRenderer, ToleranceControlsConvergence) {
-    Light bulb;
-    bulb.position = Vec3(3, 3, 3);
-    bulb.power = Rgb(10.0);
+    const Light bulb = test::pointLight(Vec3(3, 3, 3), Rgb(10.0));
     const SceneDesc scene = sceneWith("sphere.obj", 4.0, 0.75, bulb);
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);
@@ -139,9 +132,7 @@ TEST(ReferenceRenderer, ToleranceControlsConvergence) {
 }
 
 TEST(ReferenceRenderer, NothingOutsideAndNoNegativeOrNonFinitePixels) {
-    Light bulb;
-    bulb.position = Vec3(0, 0, 0);  // a light inside the object
-    bulb.power = Rgb(5.0);
+    const Light bulb = test::pointLight(Vec3(0, 0, 0), Rgb(5.0));  // a light inside the object
     SceneDesc scene = sceneWith("sphere.obj", 1.0, 1.0, bulb);
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);

@@ -139,9 +139,7 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
     const VolumeObject& sphere = objects.front();
-    Light light;
-    light.position = Vec3(0.0, 0.0, 4.0);
-    light.power = Rgb(1.0);
+    const Light light = test::pointLight(Vec3(0.0, 0.0, 4.0), Rgb(1.0));
     // Taken in: the cone of directions from the light that meet the sphere, each
     // transmitted by 1 - R at its incidence (sin i = 4 sin theta).
     double takenIn = 0.0;

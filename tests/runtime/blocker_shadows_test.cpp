@@ -59,9 +59,7 @@ void expectShadowMatchesTheReference(const Light& light) {
 }
 
 TEST(BlockerShadows, PointLightShadowMatchesTheReference) {
-    Light light;
-    light.position = Vec3(0.5, -0.3, -4.0);
-    light.power = Rgb(60.0);
+    const Light light = test::pointLight(Vec3(0.5, -0.3, -4.0), Rgb(60.0));
     expectShadowMatchesTheReference(light);
 }
 

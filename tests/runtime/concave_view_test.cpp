@@ -88,14 +88,8 @@ TEST_P(ConcaveView, MeetsTheGoalThroughTheAirBetweenItsParts) {
     const Shape& shape = shapes[GetParam()];
     test::ScratchDir dir;
     SceneDesc scene;
-    scene.camera.position = shape.camera;
-    scene.camera.target = shape.target;
-    scene.camera.fovYDegrees = 30;
-    scene.camera.width = scene.camera.height = 96;
-    Light bulb;
-    bulb.position = shape.light;
-    bulb.power = Rgb(40.0);
-    scene.lights = {bulb};
+    scene.camera = test::squareCamera(shape.camera, shape.target, 30, 96);
+    scene.lights = {test::pointLight(shape.light, Rgb(40.0))};
     ObjectDesc o = test::simpleObject(dir.write("shape.obj", shape.obj), 2.0, 0.75);
     o.samples = dir.path() / "shape.lsf";
     scene.objects = {o};

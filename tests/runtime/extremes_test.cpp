@@ -51,10 +51,9 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     }
     const auto mesh = dir.write("sphere.obj", out.str());
     SceneDesc scene;
-    scene.camera.position = c.camera * c.scale;
-    scene.camera.target = Vec3(0, 0, c.camera.z > 1.0 ? 0.0 : -1.0) * c.scale;
-    scene.camera.fovYDegrees = c.camera.z > 1.0 ? 30 : 60;
-    scene.camera.width = scene.camera.height = 48;
+    const bool outside = c.camera.z > 1.0;
+    scene.camera =
+        test::squareCamera(c.camera * c.scale, Vec3(0, 0, outside ? 0.0 : -1.0) * c.scale, outside ? 30 : 60, 48);
     for (Light l : c.lights) {
         if (l.type == Light::Type::Point) {
             l.position *= c.scale;
@@ -88,10 +87,7 @@ Render render(const Case& c, const test::ScratchDir& dir) {
 }
 
 Light pointLight(const Vec3& p, double intensity = 40.0) {
-    Light l;
-    l.position = p;
-    l.power = Rgb(intensity);
-    return l;
+    return test::pointLight(p, Rgb(intensity));
 }
 
 void expectFiniteAndNonNegative(const Image& image, const char* what) {

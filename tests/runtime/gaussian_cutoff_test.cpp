@@ -29,14 +29,8 @@ double totalGreen(const Image& image) {
 // inside every face, so every ray through it integrates it whole.
 struct OneGaussian {
     OneGaussian() {
-        scene.camera.position = Vec3(0, 0, 4);
-        scene.camera.target = Vec3(0, 0, 0);
-        scene.camera.fovYDegrees = 30.0;
-        scene.camera.width = scene.camera.height = 128;
-        Light bulb;
-        bulb.position = Vec3(3, 3, 3);
-        bulb.power = Rgb(40.0);
-        scene.lights = {bulb};
+        scene.camera = test::squareCamera(Vec3(0, 0, 4), Vec3(0, 0, 0), 30.0, 128);
+        scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
         scene.objects = {test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-1), Vec3(1)), 0.2, 0.8)};
         std::vector<std::string> warnings;
         objects = loadObjects(scene, warnings);

@@ -29,10 +29,7 @@ struct PlacedBox {
     SceneDesc scene;
 
     PlacedBox() {
-        scene.camera.position = Vec3(1.0, 1.5, 6.0);
-        scene.camera.target = kPlacement.translation;
-        scene.camera.fovYDegrees = 30.0;
-        scene.camera.width = scene.camera.height = 96;
+        scene.camera = test::squareCamera(Vec3(1.0, 1.5, 6.0), kPlacement.translation, 30.0, 96);
         Light bulb, sun;
         bulb.position = Vec3(3.0, 3.0, 2.0);
         bulb.power = Rgb(40.0);

@@ -23,14 +23,8 @@ class ReducedScattering : public ::testing::TestWithParam<const char*> {};
 TEST_P(ReducedScattering, KeepsTheErrorOfTheFullResolution) {
     const int size = 384;
     SceneDesc scene;
-    scene.camera.position = Vec3(0.4, 2.5, 4.5);
-    scene.camera.target = Vec3(0.0);
-    scene.camera.fovYDegrees = 35;
-    scene.camera.width = scene.camera.height = size;
-    Light bulb;
-    bulb.position = Vec3(3, 3, 3);
-    bulb.power = Rgb(40.0);
-    scene.lights = {bulb};
+    scene.camera = test::squareCamera(Vec3(0.4, 2.5, 4.5), Vec3(0.0), 35, size);
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / GetParam(), 2.0, 0.75)};
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);

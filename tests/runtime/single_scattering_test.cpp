@@ -27,14 +27,8 @@ namespace {
 // (3, 3, 3), camera at (0, 0, 5).
 struct SphereScene {
     explicit SphereScene(const test::ScratchDir& dir, int size = 128) {
-        scene.camera.position = Vec3(0, 0, 5);
-        scene.camera.target = Vec3(0);
-        scene.camera.fovYDegrees = 30;
-        scene.camera.width = scene.camera.height = size;
-        Light bulb;
-        bulb.position = Vec3(3, 3, 3);
-        bulb.power = Rgb(40.0);
-        scene.lights = {bulb};
+        scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, size);
+        scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
         ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75);
         o.samples = dir.path() / "sphere.lsf";
         o.fingerprint = 42;
@@ -176,10 +170,8 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
     scene.camera.position = Vec3(1.25, 0.5, 7.0);
     scene.camera.target = Vec3(1.25, 0.0, 0.0);
     scene.camera.width = scene.camera.height = 64;
-    Light light;
-    light.position = Vec3(1.25, 4.0, 3.0);  // between and above: neither sphere shadows the other
-    light.power = Rgb(40.0);
-    scene.lights = {light};
+    // Between and above: neither sphere shadows the other.
+    scene.lights = {test::pointLight(Vec3(1.25, 4.0, 3.0), Rgb(40.0))};
     ObjectDesc left = test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75);
     ObjectDesc right = test::simpleObject(dir.write("right.obj", shifted), 2.0, 0.75);
     left.name = "left", right.name = "right";

@@ -47,14 +47,8 @@ struct ThinCase {
 
 double errorOf(const std::filesystem::path& mesh, const ThinCase& c, const test::ScratchDir& dir) {
     SceneDesc scene;
-    scene.camera.position = c.camera;
-    scene.camera.target = c.target;
-    scene.camera.fovYDegrees = 35;
-    scene.camera.width = scene.camera.height = 128;
-    Light bulb;
-    bulb.position = Vec3(2, 3, 3);
-    bulb.power = Rgb(40.0);
-    scene.lights = {bulb};
+    scene.camera = test::squareCamera(c.camera, c.target, 35, 128);
+    scene.lights = {test::pointLight(Vec3(2, 3, 3), Rgb(40.0))};
     ObjectDesc o = test::simpleObject(mesh, 8.0, 0.75);
     o.samples = dir.path() / "thin.lsf";
     scene.objects = {o};

@@ -14,10 +14,7 @@ namespace lucent {
 namespace {
 
 Light pointLight(const Vec3& p) {
-    Light l;
-    l.position = p;
-    l.power = Rgb(1.0);
-    return l;
+    return test::pointLight(p, Rgb(1.0));
 }
 
 SampleSet samplesAt(const std::vector<glm::vec3>& positions) {

@@ -47,6 +47,22 @@ std::filesystem::path writeBox(const ScratchDir& dir, const std::string& name, c
     return dir.write(name, obj);
 }
 
+Camera squareCamera(const Vec3& position, const Vec3& target, double fovYDegrees, int size) {
+    Camera c;
+    c.position = position;
+    c.target = target;
+    c.fovYDegrees = fovYDegrees;
+    c.width = c.height = size;
+    return c;
+}
+
+Light pointLight(const Vec3& position, const Rgb& power) {
+    Light l;
+    l.position = position;
+    l.power = power;
+    return l;
+}
+
 ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo) {
     ObjectDesc o;
     o.name = mesh.filename().string();

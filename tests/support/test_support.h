@@ -29,6 +29,11 @@ std::filesystem::path dataDir();
 // An axis-aligned box [lo, hi] as an OBJ file in dir (outward faces).
 std::filesystem::path writeBox(const ScratchDir& dir, const std::string& name, const Vec3& lo, const Vec3& hi);
 
+// What most scenes of the tests hold: a square image from a camera looking at
+// target, and point lights (power: W/sr per channel).
+Camera squareCamera(const Vec3& position, const Vec3& target, double fovYDegrees, int size);
+Light pointLight(const Vec3& position, const Rgb& power);
+
 // The ObjectDesc for a mesh with a constant medium, fingerprint left 0.
 ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double albedo = 0.5);
 
