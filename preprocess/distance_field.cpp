@@ -2,20 +2,9 @@
 
 #include <algorithm>
 
-#include "core/plugin_library.h"
 #include "preprocess/internal/openvdb_plugin.h"
 
 namespace lucent {
-
-namespace {
-const char kAnchor = 0;  // an address inside liblucent_preprocess
-}  // namespace
-
-const PreprocessOpenVdbPlugin& preprocessOpenVdbPlugin() {
-    static const auto* table = static_cast<const PreprocessOpenVdbPlugin*>(
-        pluginTable("liblucent_preprocess_openvdb.so", "lucentPreprocessOpenVdbPlugin", &kAnchor));
-    return *table;
-}
 
 std::unique_ptr<DistanceField> DistanceField::create(const TriangleMesh& boundary, double voxelSize, double deepest) {
     return preprocessOpenVdbPlugin().createDistanceField(boundary, voxelSize, deepest);
