@@ -54,13 +54,21 @@ void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& progra
 
 void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool firstIntervalOnly) {
     const int intervals = firstIntervalOnly ? 1 : gpu::kMaxRaySegments;
-    for (TextureTarget& t : frontLayers_) t.resize(view.width, view.height);
-    for (TextureTarget& t : backLayers_) t.resize(view.width, view.height);
-    back_.resize(view.width, view.height);
+    // Only the layers this frame draws: llvmpipe zeroes a texture's memory when
+    // it is created, 2.6 MB a depth layer at 800x800.
+    const bool scattering = frame.options.scattering;
+    frontLayers_[0].resize(view.width, view.height);
+    for (int k = 0; k < intervals && scattering; ++k) {
+        frontLayers_[k].resize(view.width, view.height);
+        backLayers_[k].resize(view.width, view.height);
+    }
+    if (!firstIntervalOnly) back_.resize(view.width, view.height);
     host_.resize(view.width, view.height);
-    segments_.resize(view.width, view.height);
-    inside_.resize(view.width, view.height);
-    reach_.resize(view.width, view.height);
+    if (scattering) inside_.resize(view.width, view.height);
+    if (scattering && !firstIntervalOnly) {
+        segments_.resize(view.width, view.height);
+        reach_.resize(view.width, view.height);
+    }
     // A camera inside an object sees no front face in front of it: its rays start inside.
     cameraInside_ = false;
     for (GpuObject& o : frame.objects)
@@ -142,13 +150,22 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
     // fragments read one texel instead of three depths and three unprojections.
     if (!frame.options.scattering) return;
     const glm::mat4 inverseProjection = glm::inverse(view.projection);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, segments_.framebuffer());
-    glDepthFunc(GL_ALWAYS);  // segment.frag writes the reach of every pixel
     glDisable(GL_CULL_FACE);
-    glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_.texture(), 0);
-    glNamedFramebufferTexture(segments_.framebuffer(), GL_DEPTH_ATTACHMENT, reach_.texture(), 0);
-    const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
+    if (firstIntervalOnly) {
+        // Only inside is read: segment.frag's segment and reach go nowhere, and
+        // their targets are not even created (7.7 MB at 800x800).
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, inside_.framebuffer());
+        const GLenum outputs[2] = {GL_NONE, GL_COLOR_ATTACHMENT0};
+        glNamedFramebufferDrawBuffers(inside_.framebuffer(), 2, outputs);
+        glDisable(GL_DEPTH_TEST);
+    } else {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, segments_.framebuffer());
+        glDepthFunc(GL_ALWAYS);  // segment.frag writes the reach of every pixel
+        glNamedFramebufferTexture(segments_.framebuffer(), GL_COLOR_ATTACHMENT1, inside_.texture(), 0);
+        glNamedFramebufferTexture(segments_.framebuffer(), GL_DEPTH_ATTACHMENT, reach_.texture(), 0);
+        const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
+    }
     const GlProgram& p = firstIntervalOnly ? segmentPrograms_.get({"FIRST_INTERVAL_ONLY"}) : segmentPrograms_.get();
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
@@ -169,6 +186,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
     glUniform1iv(p.uniform("backLayers"), gpu::kMaxRaySegments, units[1]);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
 }
 
