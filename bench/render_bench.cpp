@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
                     size, context->backendName(), reinterpret_cast<const char*>(glGetString(GL_RENDERER)), frames,
                     warmup);
 
-        auto measure = [&](const SampleSet& samples, int lights, double* usefulFraction) {
+        auto measure = [&](const SampleSet& samples, int lights, ScatterFragments* counted) {
             ScatteringRenderer renderer;
             renderer.addObject(translucentObjectFor(object, samples));
             renderer.setLights(lightsAround(lights, bounds));
@@ -85,19 +85,17 @@ int main(int argc, char** argv) {
                 glFinish();
                 if (f >= warmup) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             }
-            if (usefulFraction) {
-                // Fragments the proxies generate against those whose Gaussian is above the
-                // cut-off, at full resolution (reduced, the upsampling's own fragments would count).
-                ScatterFragments fragments;
+            if (counted) {
+                // The proxies' fragments at full resolution (reduced, the upsampling's
+                // own fragments would count): shaded, and those whose Gaussian is above
+                // the cut-off (ScatterFragments).
                 DrawOptions options;
                 options.surface = false;
                 options.scatterScale = 1;
                 options.discardBelow = float(kDefaultGaussianCutoff);
-                options.fragments = &fragments;
+                options.fragments = counted;
                 frame.bindAndClear();
                 renderer.draw(view, options);
-                const double invocations = double(fragments.shaded), useful = double(fragments.kept);
-                *usefulFraction = invocations > 0.0 ? useful / invocations : 0.0;
             }
             return median(times);
         };
@@ -158,13 +156,19 @@ int main(int argc, char** argv) {
             if (scalesOnly) return 0;
         }
         std::printf("frames at the default scattering resolution (by the samples' radius on screen); useful "
-                    "fragments at full resolution\n\n"
-                    "| samples | frame (ms) | fps | useful fragments |\n|---:|---:|---:|---:|\n");
+                    "fragments at full resolution "
+                    "(useful: of the fragments shaded; of llvmpipe's fragment shader invocations, counted in "
+                    "4x4 blocks)\n\n"
+                    "| samples | frame (ms) | fps | useful fragments | of invocations |\n|---:|---:|---:|---:|---:|\n");
         for (int count : {25000, 50000, 100000}) {
             const SampleSet samples = samplesFor(count);
-            double useful = 0.0;
-            const double t = measure(samples, 1, &useful);
-            std::printf("| %zu | %.1f | %.1f | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t, 100.0 * useful);
+            ScatterFragments fragments;
+            const double t = measure(samples, 1, &fragments);
+            auto share = [](unsigned long long part, unsigned long long whole) {
+                return whole > 0 ? 100.0 * double(part) / double(whole) : 0.0;
+            };
+            std::printf("| %zu | %.1f | %.1f | %.1f%% | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t,
+                        share(fragments.kept, fragments.shaded), share(fragments.kept, fragments.invocations));
             std::fflush(stdout);
         }
         // The light sweep interleaves the settings frame by frame, so that a slow

@@ -165,13 +165,17 @@ void SamplePass::draw(FrameContext& frame) {
     }
     const bool points = pointProxiesCover(target.width, target.height);
     if (points) glEnable(GL_PROGRAM_POINT_SIZE);
-    const bool counting = frame.options.fragments != nullptr;
-    GLuint queries[2] = {0, 0};
-    if (counting) {
-        glGenQueries(2, queries);
-        glBeginQuery(kFragmentShaderInvocations, queries[0]);
-        glBeginQuery(GL_SAMPLES_PASSED, queries[1]);
-    }
+    if (frame.options.fragments) countFragments(frame, points);
+    else drawProxies(frame, points, false);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_DEPTH_TEST);
+    glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, 0, 0);
+    if (frame.scatterScale > 1) upsample(frame);
+    else addLight(frame);
+}
+
+void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful) {
     const glm::dmat3 viewToWorld = glm::transpose(glm::dmat3(glm::dmat4(frame.view.view)));
     for (GpuObject& o : frame.objects) {
         const SlabTable& slabs = o.samples->slabs();
@@ -182,7 +186,7 @@ void SamplePass::draw(FrameContext& frame) {
         variant.regions = parameters.regionAxis != kNoRegionAxis;
         // sigma_t constant, or constant in slabs the fragments integrate through.
         variant.viewFromFront = lightVaries && (o.samples->homogeneous() || !slabs.empty());
-        variant.countUseful = frame.options.discardBelow > 0.0f;
+        variant.countUseful = countUseful;
         variant.receivedCached = o.g == 0.0;
         variant.oneChannel = o.samples->channels() == 1;
         variant.tracedLight = traced(o, frame);
@@ -217,13 +221,6 @@ void SamplePass::draw(FrameContext& frame) {
         glUniform1i(p.uniform("lightVaries"), lightVaries ? 1 : 0);
         o.samples->draw();
     }
-    if (counting) countFragments(queries, *frame.options.fragments);
-    glDisable(GL_PROGRAM_POINT_SIZE);
-    glDisable(GL_DEPTH_CLAMP);
-    glDisable(GL_DEPTH_TEST);
-    glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, 0, 0);
-    if (frame.scatterScale > 1) upsample(frame);
-    else addLight(frame);
 }
 
 void SamplePass::addLight(const FrameContext& frame) const {
@@ -236,15 +233,32 @@ void SamplePass::addLight(const FrameContext& frame) const {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void SamplePass::countFragments(const GLuint (&queries)[2], ScatterFragments& fragments) {
+// The render benchmark's diagnostic, drawn twice. First without colour, to count
+// the fragments the proxies generate that pass the early depth test: those the
+// fragment shader runs for. Not GL_FRAGMENT_SHADER_INVOCATIONS: llvmpipe counts
+// it in whole 4x4 blocks, so the pixels of a block beside a proxy's edge count
+// too (kept as invocations, for comparison). Then with the variant that discards
+// a fragment whose Gaussian's line integral is below the cut-off: the useful ones.
+void SamplePass::countFragments(FrameContext& frame, bool points) {
+    ScatterFragments& fragments = *frame.options.fragments;
+    GLuint queries[3] = {0, 0, 0};
+    glGenQueries(3, queries);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glBeginQuery(GL_SAMPLES_PASSED, queries[0]);
+    drawProxies(frame, points, false);
+    glEndQuery(GL_SAMPLES_PASSED);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBeginQuery(kFragmentShaderInvocations, queries[1]);
+    glBeginQuery(GL_SAMPLES_PASSED, queries[2]);
+    drawProxies(frame, points, frame.options.discardBelow > 0.0f);
     glEndQuery(kFragmentShaderInvocations);
     glEndQuery(GL_SAMPLES_PASSED);
-    GLuint64 shaded = 0, kept = 0;
-    glGetQueryObjectui64v(queries[0], GL_QUERY_RESULT, &shaded);
-    glGetQueryObjectui64v(queries[1], GL_QUERY_RESULT, &kept);
-    glDeleteQueries(2, queries);
-    fragments.shaded += shaded;
-    fragments.kept += kept;
+    GLuint64 counts[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) glGetQueryObjectui64v(queries[i], GL_QUERY_RESULT, &counts[i]);
+    glDeleteQueries(3, queries);
+    fragments.shaded += counts[0];
+    fragments.invocations += counts[1];
+    fragments.kept += counts[2];
 }
 
 void SamplePass::upsample(const FrameContext& frame) const {

@@ -33,7 +33,10 @@ private:
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
     void upsample(const FrameContext& frame) const;
     void addLight(const FrameContext& frame) const;
-    static void countFragments(const GLuint (&queries)[2], ScatterFragments& fragments);
+    // Every object's proxies into the bound target (points: POINT_PROXIES);
+    // countUseful: the variant that discards fragments below DrawOptions::discardBelow.
+    void drawProxies(FrameContext& frame, bool points, bool countUseful);
+    void countFragments(FrameContext& frame, bool points);  // DrawOptions::fragments
     double cutoffSigmas_;
     // A Gaussian seen on screen is a 2D Gaussian; the square around its cut-off
     // circle (radius r = cutoffSigmas s) keeps erf(r / (s sqrt 2))^2 of its mass

@@ -1,6 +1,7 @@
 // The proxies that draw each Gaussian (runtime/internal/scatter.geom): the
-// cut-off moves light and loses none, and the point sprites keep it across the
-// viewport's edge and past the largest point.
+// cut-off moves light and loses none, the point sprites keep it across the
+// viewport's edge and past the largest point, and the render benchmark's
+// fragment counts are pixels.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,8 +56,9 @@ struct OneGaussian {
         const size_t n = set.coefficientsPerSample();
         one.sh.assign(set.sh.begin() + std::ptrdiff_t(nearest * n), set.sh.begin() + std::ptrdiff_t((nearest + 1) * n));
     }
-    // The image at this size (full resolution), or of its columns [0, columns).
-    Image draw(int size, double cutoff, int columns = 0) const {
+    // The image at this size (full resolution), or of its columns [0, columns);
+    // with fragments, the proxies' fragments counted (DrawOptions::fragments).
+    Image draw(int size, double cutoff, int columns = 0, ScatterFragments* fragments = nullptr) const {
         ViewSetup view = viewSetupFor(withSize(size), objects[0].mesh().bounds());
         if (columns > 0) {
             // The same camera's frustum cut to the window's first columns:
@@ -71,6 +73,10 @@ struct OneGaussian {
         DrawOptions options;
         options.surface = false;
         options.scatterScale = 1;
+        if (fragments) {
+            options.fragments = fragments;
+            options.discardBelow = float(cutoff);
+        }
         ScatteringRenderer renderer(cutoff);
         renderer.addObject(translucentObjectFor(objects[0], one));
         renderer.setLights(scene.lights);
@@ -156,6 +162,50 @@ TEST(GaussianCutoff, PointsAndSquaresHoldTheSameLight) {
     ASSERT_GT(points, 0.0);
     std::printf("light per pixel area, squares at 1100 against points at 1000: %.6f\n", squares / points);
     EXPECT_NEAR(squares / points, 1.0, 1e-3);
+}
+
+// The render benchmark's useful fragments (DrawOptions::fragments) against a
+// count by ray geometry. Every ray through this Gaussian integrates it whole, so
+// its line integral peaks at the centre and is above epsilon of the peak exactly
+// where the ray passes within r = s sqrt(2 ln(1 / epsilon)) of the centre: the
+// kept fragments are the pixels whose centre ray does (1% for the shift by the
+// light's variation, G' s^2, here 0.2 * 0.01 of s, and the disc's rim). The
+// shaded ones are the proxy's pixels, a point sprite around that disc: at least
+// its pixels and its corners (4 / pi of the disc, 1.15 asked), at most the disc's
+// box and one more column and row for the rounding of the point's edges (1296 of
+// 1369 here; llvmpipe's fragment shader invocations, counted in whole 4x4
+// blocks, are 1440, and must be at least as many).
+TEST(GaussianCutoff, FragmentCountsArePixels) {
+    const OneGaussian gaussian;
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    const int size = 128;
+    const double cutoff = 1e-2;
+    ScatterFragments fragments;
+    gaussian.draw(size, cutoff, 0, &fragments);
+    const ViewSetup view = viewSetupFor(gaussian.withSize(size), gaussian.objects[0].mesh().bounds());
+    const glm::dmat4 toWorld = glm::inverse(glm::dmat4(view.projection) * glm::dmat4(view.view));
+    const Vec3 centre(gaussian.one.positions[0]);
+    const double r = double(gaussian.one.widths[0]) * std::sqrt(2.0 * std::log(1.0 / cutoff));
+    long long disc = 0;
+    int x0 = size, x1 = -1, y0 = size, y1 = -1;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 ndc(2.0 * (x + 0.5) / size - 1.0, 2.0 * (y + 0.5) / size - 1.0);
+            const glm::dvec4 a = toWorld * glm::dvec4(ndc, -1.0, 1.0), b = toWorld * glm::dvec4(ndc, 1.0, 1.0);
+            const Vec3 from = Vec3(a) / a.w, dir = glm::normalize(Vec3(b) / b.w - from);
+            const Vec3 offset = centre - from;
+            if (glm::length(offset - glm::dot(offset, dir) * dir) > r) continue;
+            ++disc;
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+    ASSERT_GT(disc, 1000) << "the disc spans tens of pixels";
+    const double box = double(x1 - x0 + 2) * double(y1 - y0 + 2);
+    std::printf("disc %lld pixels (its box and a row and column: %.0f); kept %llu, shaded %llu, invocations %llu\n", disc, box,
+                fragments.kept, fragments.shaded, fragments.invocations);
+    EXPECT_NEAR(double(fragments.kept) / double(disc), 1.0, 0.01);
+    EXPECT_GE(double(fragments.shaded), 1.15 * double(disc));
+    EXPECT_LE(double(fragments.shaded), box);
+    EXPECT_GE(fragments.invocations, fragments.shaded);
 }
 
 }  // namespace
