@@ -53,9 +53,10 @@ std::unique_ptr<GlSession> openSession(const SessionKey& key) {
     return session;
 }
 
+// session: the prepared one or null (one is opened); holds the session drawn with on return.
 Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
                              const std::vector<ScatteringGrid>& grids, std::string& backend,
-                             std::unique_ptr<GlSession> session);
+                             std::unique_ptr<GlSession>& session);
 
 }  // namespace
 
@@ -64,8 +65,12 @@ struct SsMethod::Prepared {
     std::future<std::unique_ptr<GlSession>> session;
 };
 
+struct SsMethod::Retiring {
+    std::future<void> done;
+};
+
 SsMethod::SsMethod() = default;
-SsMethod::~SsMethod() = default;
+SsMethod::~SsMethod() = default;  // waits for retiring_
 
 void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
     const SessionKey key = sessionKey(desc, settings);
@@ -143,19 +148,26 @@ Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings)
         const std::unique_ptr<Prepared> prepared = std::move(prepared_);
         if (prepared->key == sessionKey(scene.desc, settings)) session = prepared->session.get();
     }
-    return renderSingleScattering(scene, settings, {}, backend_, std::move(session));
+    Image image = renderSingleScattering(scene, settings, {}, backend_, session);
+    // Torn down in a thread of its own while the caller writes the image (the
+    // bunny's 800x800 session: 15 ms); the destructor waits for it.
+    session->context->release();
+    retiring_ = std::make_unique<Retiring>(
+        Retiring{std::async(std::launch::async, [retired = std::move(session)]() mutable { retired.reset(); })});
+    return image;
 }
 
 Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
                              const std::vector<ScatteringGrid>& grids, std::string& backend) {
-    return renderSingleScattering(scene, settings, grids, backend, nullptr);
+    std::unique_ptr<GlSession> session;
+    return renderSingleScattering(scene, settings, grids, backend, session);
 }
 
 namespace {
 
 Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
                              const std::vector<ScatteringGrid>& grids, std::string& backend,
-                             std::unique_ptr<GlSession> session) {
+                             std::unique_ptr<GlSession>& session) {
     if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "single scattering needs the objects' sample sets");
     // The traced light casts rays into every object: their ray casters (41 ms for
     // the bunny's 75k faces) are built while the OpenGL context comes up and the

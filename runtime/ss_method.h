@@ -27,6 +27,8 @@ private:
     std::string backend_;
     struct Prepared;
     std::unique_ptr<Prepared> prepared_;
+    struct Retiring;  // the last render's session, being torn down
+    std::unique_ptr<Retiring> retiring_;
 };
 
 // The frame --method ss draws, plus grids of multiple scattering (--method lbl
