@@ -196,9 +196,11 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     frame.scatterTargets = scale == 1 ? &r.targets : &r.scatterTargets;
     for (const auto& pass : r.passes) pass->prepare(frame);
     // Drawn reduced, the scattering asks of the full targets only the first
-    // interval; the grids march the whole segment at full resolution.
-    r.targets.draw(frame, view, scale != 1 && r.grids->empty());
-    if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced);
+    // interval; the grids march the whole segment at full resolution. The
+    // reduced targets' layers come from one mesh pass: no surface reads them.
+    r.targets.draw(frame, view,
+                   scale != 1 && r.grids->empty() ? FrameTargets::Layers::FirstInterval : FrameTargets::Layers::Peeled);
+    if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced, FrameTargets::Layers::OnePass);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);
     glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kBindingLights, r.lights.buffer);

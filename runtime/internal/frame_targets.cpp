@@ -2,6 +2,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <bit>
+
 #include "core/error.h"
 #include "runtime/internal/placement_uniforms.h"
 
@@ -43,7 +45,11 @@ void TextureTarget::release() {
 
 FrameTargets::FrameTargets() { glCreateVertexArrays(1, &emptyVao_); }
 
-FrameTargets::~FrameTargets() { glDeleteVertexArrays(1, &emptyVao_); }
+FrameTargets::~FrameTargets() {
+    glDeleteVertexArrays(1, &emptyVao_);
+    if (layerFramebuffer_) glDeleteFramebuffers(1, &layerFramebuffer_);
+    if (layerArray_) glDeleteTextures(1, &layerArray_);
+}
 
 void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& program) {
     for (const GpuObject& o : frame.objects) {
@@ -52,57 +58,8 @@ void FrameTargets::drawMeshes(const FrameContext& frame, const GlProgram& progra
     }
 }
 
-void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool firstIntervalOnly) {
+void FrameTargets::drawPeeled(const FrameContext& frame, bool firstIntervalOnly) {
     const int intervals = firstIntervalOnly ? 1 : gpu::kMaxRaySegments;
-    // Only the layers this frame draws: llvmpipe zeroes a texture's memory when
-    // it is created, 2.6 MB a depth layer at 800x800.
-    const bool scattering = frame.options.scattering;
-    frontLayers_[0].resize(view.width, view.height);
-    for (int k = 0; k < intervals && scattering; ++k) {
-        frontLayers_[k].resize(view.width, view.height);
-        backLayers_[k].resize(view.width, view.height);
-    }
-    if (!firstIntervalOnly) back_.resize(view.width, view.height);
-    host_.resize(view.width, view.height);
-    if (scattering) inside_.resize(view.width, view.height);
-    if (scattering && !firstIntervalOnly) {
-        segments_.resize(view.width, view.height);
-        reach_.resize(view.width, view.height);
-    }
-    // A camera inside an object sees no front face in front of it: its rays start inside.
-    cameraInside_ = false;
-    for (GpuObject& o : frame.objects)
-        cameraInside_ = cameraInside_ || containsPoint(o, o.placement.inversePoint(Vec3(view.cameraPosition)));
-    glViewport(0, 0, view.width, view.height);
-    glDisable(GL_BLEND);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-
-    // The host's depth, copied so that no pass samples a texture it draws into.
-    host_.clearDepth(1.0f);
-    if (frame.options.hostDepthTexture) {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
-        glDepthFunc(GL_ALWAYS);
-        glUseProgram(copyDepthProgram_.id());
-        glBindTextureUnit(0, frame.options.hostDepthTexture);
-        glUniform1i(copyDepthProgram_.uniform("source"), 0);
-        glUniform2f(copyDepthProgram_.uniform("sourcePerPixel"), float(frame.view.width) / float(view.width),
-                    float(frame.view.height) / float(view.height));
-        glBindVertexArray(emptyVao_);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    // Blockers are opaque: the camera's rays stop at their front faces as at the host's geometry.
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glDepthFunc(GL_LESS);
-    glUseProgram(depthProgram_.id());
-    glUniformMatrix4fv(depthProgram_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
-    for (const GpuObject& o : frame.objects) {
-        setMeshPlacement(depthProgram_, o.placement);
-        for (const auto& blocker : o.blockers) blocker->draw();
-    }
-
     // Where each pixel's ray enters the objects (nearest front face) and finally
     // leaves them (farthest back face).
     frontLayers_[0].clearDepth(1.0f);
@@ -144,6 +101,101 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
                 drawMeshes(frame, plain ? depthProgram_ : peel);
             }
     }
+}
+
+void FrameTargets::drawInOnePass(const FrameContext& frame, const ViewSetup& view) {
+    constexpr GLsizei kLayers = 2 * gpu::kMaxRaySegments + 1;
+    if (view.width != layerWidth_ || view.height != layerHeight_) {
+        if (layerFramebuffer_) glDeleteFramebuffers(1, &layerFramebuffer_);
+        if (layerArray_) glDeleteTextures(1, &layerArray_);
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &layerArray_);
+        glTextureStorage3D(layerArray_, 1, GL_R32UI, view.width, view.height, kLayers);
+        // An integer texture is complete only when nearest-filtered.
+        glTextureParameteri(layerArray_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(layerArray_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateFramebuffers(1, &layerFramebuffer_);
+        glNamedFramebufferParameteri(layerFramebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, view.width);
+        glNamedFramebufferParameteri(layerFramebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, view.height);
+        layerWidth_ = view.width;
+        layerHeight_ = view.height;
+    }
+    // Nothing yet: the nearest faces at depth 1, the farthest at 0 (segment.frag's "none").
+    const GLuint one = std::bit_cast<GLuint>(1.0f), zero = 0;
+    glClearTexSubImage(layerArray_, 0, 0, 0, 0, view.width, view.height, kLayers - 1, GL_RED_INTEGER,
+                       GL_UNSIGNED_INT, &one);
+    glClearTexSubImage(layerArray_, 0, 0, 0, kLayers - 1, view.width, view.height, 1, GL_RED_INTEGER,
+                       GL_UNSIGNED_INT, &zero);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layerFramebuffer_);
+    glDisable(GL_CULL_FACE);  // the fragment tells front from back (gl_FrontFacing)
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(layersProgram_.id());
+    glUniformMatrix4fv(layersProgram_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
+    glBindImageTexture(0, layerArray_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    drawMeshes(frame, layersProgram_);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+}
+
+void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, Layers layers) {
+    const bool firstIntervalOnly = layers == Layers::FirstInterval, onePass = layers == Layers::OnePass;
+    const int intervals = firstIntervalOnly ? 1 : gpu::kMaxRaySegments;
+    // Only the layers this frame draws: llvmpipe zeroes a texture's memory when
+    // it is created, 2.6 MB a depth layer at 800x800.
+    const bool scattering = frame.options.scattering;
+    if (!onePass) {
+        frontLayers_[0].resize(view.width, view.height);
+        for (int k = 0; k < intervals && scattering; ++k) {
+            frontLayers_[k].resize(view.width, view.height);
+            backLayers_[k].resize(view.width, view.height);
+        }
+        if (!firstIntervalOnly) back_.resize(view.width, view.height);
+    }
+    host_.resize(view.width, view.height);
+    if (scattering) inside_.resize(view.width, view.height);
+    if (scattering && !firstIntervalOnly) {
+        segments_.resize(view.width, view.height);
+        reach_.resize(view.width, view.height);
+    }
+    // A camera inside an object sees no front face in front of it: its rays start inside.
+    cameraInside_ = false;
+    for (GpuObject& o : frame.objects)
+        cameraInside_ = cameraInside_ || containsPoint(o, o.placement.inversePoint(Vec3(view.cameraPosition)));
+    glViewport(0, 0, view.width, view.height);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+
+    // The host's depth, copied so that no pass samples a texture it draws into.
+    host_.clearDepth(1.0f);
+    if (frame.options.hostDepthTexture) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
+        glDepthFunc(GL_ALWAYS);
+        glUseProgram(copyDepthProgram_.id());
+        glBindTextureUnit(0, frame.options.hostDepthTexture);
+        glUniform1i(copyDepthProgram_.uniform("source"), 0);
+        glUniform2f(copyDepthProgram_.uniform("sourcePerPixel"), float(frame.view.width) / float(view.width),
+                    float(frame.view.height) / float(view.height));
+        glBindVertexArray(emptyVao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    // Blockers are opaque: the camera's rays stop at their front faces as at the host's geometry.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glDepthFunc(GL_LESS);
+    glUseProgram(depthProgram_.id());
+    glUniformMatrix4fv(depthProgram_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
+    for (const GpuObject& o : frame.objects) {
+        setMeshPlacement(depthProgram_, o.placement);
+        for (const auto& blocker : o.blockers) blocker->draw();
+    }
+
+    if (onePass) {
+        if (frame.options.scattering) drawInOnePass(frame, view);
+    } else {
+        drawPeeled(frame, firstIntervalOnly);
+    }
     glCullFace(GL_BACK);
 
     // Each pixel's ray segment inside the objects, once, so that the scattering
@@ -166,7 +218,9 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
         const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         glNamedFramebufferDrawBuffers(segments_.framebuffer(), 2, outputs);
     }
-    const GlProgram& p = firstIntervalOnly ? segmentPrograms_.get({"FIRST_INTERVAL_ONLY"}) : segmentPrograms_.get();
+    const GlProgram& p = firstIntervalOnly ? segmentPrograms_.get({"FIRST_INTERVAL_ONLY"})
+                         : onePass         ? segmentPrograms_.get({"ONE_PASS_LAYERS"})
+                                           : segmentPrograms_.get();
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("inverseProjection"), 1, GL_FALSE, glm::value_ptr(inverseProjection));
     glUniform2f(p.uniform("viewportSize"), float(view.width), float(view.height));
@@ -175,15 +229,20 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
     glBindTextureUnit(1, host_.texture());
     glUniform1i(p.uniform("farthestBack"), 0);
     glUniform1i(p.uniform("hostDepth"), 1);
-    GLint units[2][gpu::kMaxRaySegments];
-    for (int k = 0; k < gpu::kMaxRaySegments; ++k) {
-        units[0][k] = 2 + k;
-        units[1][k] = 2 + gpu::kMaxRaySegments + k;
-        glBindTextureUnit(GLuint(units[0][k]), frontLayers_[k].texture());
-        glBindTextureUnit(GLuint(units[1][k]), backLayers_[k].texture());
+    if (onePass) {
+        glBindTextureUnit(2, layerArray_);
+        glUniform1i(p.uniform("layers"), 2);
+    } else {
+        GLint units[2][gpu::kMaxRaySegments];
+        for (int k = 0; k < gpu::kMaxRaySegments; ++k) {
+            units[0][k] = 2 + k;
+            units[1][k] = 2 + gpu::kMaxRaySegments + k;
+            glBindTextureUnit(GLuint(units[0][k]), frontLayers_[k].texture());
+            glBindTextureUnit(GLuint(units[1][k]), backLayers_[k].texture());
+        }
+        glUniform1iv(p.uniform("frontLayers"), gpu::kMaxRaySegments, units[0]);
+        glUniform1iv(p.uniform("backLayers"), gpu::kMaxRaySegments, units[1]);
     }
-    glUniform1iv(p.uniform("frontLayers"), gpu::kMaxRaySegments, units[0]);
-    glUniform1iv(p.uniform("backLayers"), gpu::kMaxRaySegments, units[1]);
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
@@ -191,3 +250,4 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, bool f
 }
 
 }  // namespace lucent
+

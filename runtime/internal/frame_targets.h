@@ -41,19 +41,27 @@ public:
     FrameTargets(const FrameTargets&) = delete;
     FrameTargets& operator=(const FrameTargets&) = delete;
 
+    // Which depth layers a frame's targets hold, and how they are drawn.
+    enum class Layers {
+        // The scattering is drawn elsewhere, and only the surface (frontDepth)
+        // and the upsampling's likeness (the first interval of insideSegments)
+        // read these targets: the later intervals, raySegments and reachDepth
+        // are left out, and so are their mesh passes.
+        FirstInterval,
+        // Every layer as a depth texture, peeled (peel.frag): a mesh pass each.
+        Peeled,
+        // Every layer in one mesh pass (depth_layers.frag): frontDepth is not drawn.
+        OnePass,
+    };
     // Draws the targets for this frame as seen through view (frame.view, or the
     // reduced one the scattering runs at: the host's depth is then read at each
     // pixel's centre); leaves depth testing on with GL_LESS, back faces culled
-    // and the last target bound. firstIntervalOnly: the scattering is drawn
-    // elsewhere, and only the surface (frontDepth) and the upsampling's likeness
-    // (the first interval of insideSegments) read these targets: the later
-    // intervals, raySegments and reachDepth are left out, and so are their mesh
-    // passes (the farthest back face, the peeled layers).
-    void draw(const FrameContext& frame, const ViewSetup& view, bool firstIntervalOnly = false);
+    // and the last target bound.
+    void draw(const FrameContext& frame, const ViewSetup& view, Layers layers);
     // Draws every object's boundary mesh with program (mesh.vert), each where it stands.
     static void drawMeshes(const FrameContext& frame, const GlProgram& program);
 
-    GLuint frontDepth() const { return frontLayers_[0].texture(); }
+    GLuint frontDepth() const { return frontLayers_[0].texture(); }  // not with Layers::OnePass
     GLuint raySegments() const { return segments_.texture(); }
     // RGBA32F: the first two intervals each pixel's ray spends inside the objects (segment.frag).
     GLuint insideSegments() const { return inside_.texture(); }
@@ -68,8 +76,11 @@ private:
     GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
     GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
     GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
-    // segment.frag, and its FIRST_INTERVAL_ONLY variant.
+    GlProgram layersProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_layers.frag"}};
+    // segment.frag, and its FIRST_INTERVAL_ONLY and ONE_PASS_LAYERS variants.
     GlProgramVariants segmentPrograms_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}}};
+    void drawPeeled(const FrameContext& frame, bool firstIntervalOnly);
+    void drawInOnePass(const FrameContext& frame, const ViewSetup& view);
     // The entries (front faces) and exits (back faces) nearest first, peeled.
     TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
                                                        TextureTarget(GL_DEPTH_COMPONENT32F)};
@@ -79,6 +90,10 @@ private:
     TextureTarget segments_{GL_RG32F};
     TextureTarget inside_{GL_RGBA32F};
     TextureTarget reach_{GL_DEPTH_COMPONENT32F};
+    // Layers::OnePass: the R32UI array depth_layers.frag keeps its layers in, and
+    // a framebuffer without attachments of its size to rasterize the meshes into.
+    GLuint layerArray_ = 0, layerFramebuffer_ = 0;
+    int layerWidth_ = 0, layerHeight_ = 0;
     GLuint emptyVao_ = 0;
     bool cameraInside_ = false;
 };

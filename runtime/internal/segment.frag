@@ -11,9 +11,24 @@
 //    An unused interval is (-1, -2).
 #include "gpu_layout.h"
 
+#ifdef ONE_PASS_LAYERS
+// depth_layers.frag's array: the fronts, the backs, the farthest back, as bits.
+uniform usampler2DArray layers;
+float frontLayer(int k, ivec2 pixel) { return uintBitsToFloat(texelFetch(layers, ivec3(pixel, k), 0).r); }
+float backLayer(int k, ivec2 pixel) {
+    return uintBitsToFloat(texelFetch(layers, ivec3(pixel, kMaxRaySegments + k), 0).r);
+}
+float farthestBackAt(ivec2 pixel) {
+    return uintBitsToFloat(texelFetch(layers, ivec3(pixel, 2 * kMaxRaySegments), 0).r);
+}
+#else
 uniform sampler2D frontLayers[kMaxRaySegments];  // 1st, 2nd, ... nearest front face
 uniform sampler2D backLayers[kMaxRaySegments];   // 1st, 2nd, ... nearest back face
 uniform sampler2D farthestBack;
+float frontLayer(int k, ivec2 pixel) { return texelFetch(frontLayers[k], pixel, 0).r; }
+float backLayer(int k, ivec2 pixel) { return texelFetch(backLayers[k], pixel, 0).r; }
+float farthestBackAt(ivec2 pixel) { return texelFetch(farthestBack, pixel, 0).r; }
+#endif
 uniform sampler2D hostDepth;
 uniform mat4 inverseProjection;
 uniform vec2 viewportSize;
@@ -33,7 +48,7 @@ void main() {
 #ifdef FIRST_INTERVAL_ONLY
     // FrameTargets::draw(firstIntervalOnly): the first entry and exit alone (no
     // farthest back face was drawn); segment and the reach are not read.
-    float entry = texelFetch(frontLayers[0], pixel, 0).r, exit = texelFetch(backLayers[0], pixel, 0).r;
+    float entry = frontLayer(0, pixel), exit = backLayer(0, pixel);
     float host = texelFetch(hostDepth, pixel, 0).r;
     float a = cameraInside ? 0.0 : eyeDistance(entry, ndc);
     float b = min(eyeDistance(exit, ndc), host < 1.0 ? eyeDistance(host, ndc) : 3.4e38);
@@ -42,7 +57,7 @@ void main() {
     segment = vec2(-1.0, -2.0);
     gl_FragDepth = 0.0;
 #else
-    float front = texelFetch(frontLayers[0], pixel, 0).r, back = texelFetch(farthestBack, pixel, 0).r;
+    float front = frontLayer(0, pixel), back = farthestBackAt(pixel);
     float host = texelFetch(hostDepth, pixel, 0).r;
     float hostT = host < 1.0 ? eyeDistance(host, ndc) : 3.4e38;
     vec2 intervals[kMaxRaySegments];
@@ -57,9 +72,9 @@ void main() {
         // at the (k-1)-th) and leaves at the k-th back face.
         for (int k = 0; k < kMaxRaySegments; ++k) {
             float entry;
-            if (cameraInside) entry = k == 0 ? 0.0 : texelFetch(frontLayers[k - 1], pixel, 0).r;
-            else entry = texelFetch(frontLayers[k], pixel, 0).r;
-            float exit = texelFetch(backLayers[k], pixel, 0).r;
+            if (cameraInside) entry = k == 0 ? 0.0 : frontLayer(k - 1, pixel);
+            else entry = frontLayer(k, pixel);
+            float exit = backLayer(k, pixel);
             if ((k > 0 || !cameraInside) && entry >= 1.0) break;
             if (exit >= 1.0) break;
             float a = (cameraInside && k == 0) ? 0.0 : eyeDistance(entry, ndc);
