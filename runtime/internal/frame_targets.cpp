@@ -192,7 +192,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, Layers
     }
 
     if (onePass) {
-        if (frame.options.scattering) drawInOnePass(frame, view);
+        if (scattering) drawInOnePass(frame, view);
     } else {
         drawPeeled(frame, firstIntervalOnly);
     }
@@ -200,7 +200,7 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, Layers
 
     // Each pixel's ray segment inside the objects, once, so that the scattering
     // fragments read one texel instead of three depths and three unprojections.
-    if (!frame.options.scattering) return;
+    if (!scattering) return;
     const glm::mat4 inverseProjection = glm::inverse(view.projection);
     glDisable(GL_CULL_FACE);
     if (firstIntervalOnly) {

@@ -46,7 +46,7 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
 #ifdef FIRST_INTERVAL_ONLY
-    // FrameTargets::draw(firstIntervalOnly): the first entry and exit alone (no
+    // FrameTargets::Layers::FirstInterval: the first entry and exit alone (no
     // farthest back face was drawn); segment and the reach are not read.
     float entry = frontLayer(0, pixel), exit = backLayer(0, pixel);
     float host = texelFetch(hostDepth, pixel, 0).r;
