@@ -4,9 +4,11 @@
 #include <map>
 
 #include "apps/commands.h"
+#include "apps/heap_pages.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+    lucent::serveHeapFromHugePages();
     CLI::App app{"Lucent: single scattering in translucent objects, rendered by an OpenGL raster pipeline"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "lucent 0.1.0");
