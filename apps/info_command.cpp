@@ -49,7 +49,7 @@ Command addInfoCommand(CLI::App& app) {
             width.add(s.widths[i]);
             sigmaS.add(s.scattering[i].g);  // times the sample's weight
             // Y_00 = 1 / (2 sqrt(pi)): the mean over directions of what the SH hold is c_00 / (2 sqrt(pi)).
-            dc.add(s.sh[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
+            dc.add(s.coefficients()[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
             error.add(s.truncationError[i]);
             if (s.boundary[i].valid()) {
                 share.add(s.boundary[i].share);

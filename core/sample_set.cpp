@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <istream>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/fingerprint.h"
 #include "core/input_file.h"
+#include "core/lazy.h"
 #include "core/limits.h"
 
 static_assert(std::endian::native == std::endian::little, "the sample file is little endian; add byte swapping");
@@ -58,6 +60,19 @@ public:
         read(v.data(), count * sizeof(T));
         return v;
     }
+    // Reads count values in pieces, hashed like the rest, and hands each piece
+    // to visit(std::span<const T>) without keeping it.
+    template <class T, class Visit>
+    void skimArray(size_t count, Visit&& visit) {
+        need(count * sizeof(T));
+        std::vector<T> piece(std::min<size_t>(count, (size_t(1) << 20) / sizeof(T)));
+        for (size_t done = 0; done < count;) {
+            const size_t n = std::min(piece.size(), count - done);
+            read(piece.data(), n * sizeof(T));
+            visit(std::span<const T>(piece.data(), n));
+            done += n;
+        }
+    }
     uint64_t offset() const { return offset_; }
     uint64_t size() const { return size_; }
     uint64_t checksum() const { return checksum_.value(); }  // of the bytes read so far
@@ -90,7 +105,9 @@ public:
     }
 };
 
-SampleSet parse(Reader& r, const std::string& name);
+// file: the sample file r reads, whose coefficients are left in it; empty: r
+// reads bytes in memory, and the coefficients are copied out.
+SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path& file);
 
 template <class T>
 bool allFinite(const std::vector<T>& v) {
@@ -132,7 +149,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.putArray(s.region);
     w.putArray(s.image);
     w.putArray(s.boundary);
-    w.putArray(s.sh);
+    w.putArray(s.coefficients());
     w.putArray(s.truncationError);
     // The mesh in single precision: what it was read as (OpenMesh's points are floats).
     w.put(uint64_t(s.mesh.positions.size()));
@@ -154,19 +171,54 @@ SampleSet readSampleFile(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw Error(name, "cannot open sample file");
     Reader r(in, size, name);
-    return parse(r, name);
+    return parse(r, name, file);
 }
 
 SampleSet parseSampleFile(std::span<const char> bytes, const std::string& name) {
     MemoryBuffer buffer(bytes);
     std::istream in(&buffer);
     Reader r(in, bytes.size(), name);
-    return parse(r, name);
+    return parse(r, name, {});
+}
+
+class CoefficientsInFile {
+public:
+    CoefficientsInFile(std::filesystem::path file, uint64_t offset, size_t count, uint64_t digest)
+        : file_(std::move(file)), offset_(offset), count_(count), digest_(digest) {}
+    const std::vector<float>& get() const {
+        return values_.get([this] {
+            const std::string name = file_.string();
+            const auto changed = [&] { return Error(name, "sample file changed since it was read (run the command again)"); };
+            // Its size is checked before anything is allocated.
+            if (regularFileSize(file_, "sample file") < offset_ + count_ * sizeof(float)) throw changed();
+            std::ifstream in(file_, std::ios::binary);
+            if (!in) throw Error(name, "cannot open sample file");
+            std::vector<float> v(count_);
+            in.seekg(std::streamoff(offset_));
+            in.read(reinterpret_cast<char*>(v.data()), std::streamsize(count_ * sizeof(float)));
+            if (!in || uint64_t(in.gcount()) != count_ * sizeof(float)) throw changed();
+            Fingerprint digest;
+            digest.addBytes(v.data(), count_ * sizeof(float));
+            if (digest.value() != digest_) throw changed();
+            return v;
+        });
+    }
+
+private:
+    std::filesystem::path file_;
+    uint64_t offset_;
+    size_t count_;
+    uint64_t digest_;  // of the coefficients' bytes when the file was read and checked
+    Lazy<std::vector<float>> values_;
+};
+
+const std::vector<float>& SampleSet::coefficients() const {
+    return sh.empty() && coefficientsInFile ? coefficientsInFile->get() : sh;
 }
 
 namespace {
 
-SampleSet parse(Reader& r, const std::string& name) {
+SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path& file) {
     std::array<char, 8> magic{};
     if (r.size() >= 8) magic = r.get<std::array<char, 8>>();
     if (std::memcmp(magic.data(), kMagic, 8) != 0) throw Error(name, "not a Lucent sample file (wrong magic number)");
@@ -223,7 +275,20 @@ SampleSet parse(Reader& r, const std::string& name) {
     s.region = r.getArray<glm::vec2>(count);
     s.image = r.getArray<glm::vec3>(count);
     s.boundary = r.getArray<BoundaryBall>(count);
-    s.sh = r.getArray<float>(count * s.coefficientsPerSample());
+    bool finiteCoefficients = true;
+    const size_t coefficients = count * s.coefficientsPerSample();
+    if (file.empty()) {
+        s.sh = r.getArray<float>(coefficients);
+        finiteCoefficients = allFinite(s.sh);
+    } else {
+        const uint64_t offset = r.offset();
+        Fingerprint digest;
+        r.skimArray<float>(coefficients, [&](std::span<const float> piece) {
+            digest.addBytes(piece.data(), piece.size_bytes());
+            for (float c : piece) finiteCoefficients = finiteCoefficients && std::isfinite(c);
+        });
+        s.coefficientsInFile = std::make_shared<CoefficientsInFile>(file, offset, coefficients, digest.value());
+    }
     s.truncationError = r.getArray<float>(count);
     const uint64_t vertices = r.get<uint64_t>(), triangles = r.get<uint64_t>();
     const uint64_t meshBytes = r.size() - r.offset() - sizeof(uint64_t);
@@ -239,7 +304,7 @@ SampleSet parse(Reader& r, const std::string& name) {
     if (payload != stored) throw Error(name, "sample file checksum does not match (corrupted)");
     if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.scattering) ||
         !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) || !allFinite(s.boundary) ||
-        !allFinite(s.sh) || !allFinite(s.truncationError))
+        !finiteCoefficients || !allFinite(s.truncationError))
         throw Error(name, "sample file holds a non-finite value");
     // The mesh: what every index and coordinate must be for the passes and ray
     // casters that take it (its closedness was checked when it was read).

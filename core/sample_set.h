@@ -5,6 +5,7 @@
 // DESIGN.md (see docs/sample-file.md for the byte layout).
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <span>
 #include <vector>
@@ -54,6 +55,9 @@ struct BoundaryBall {
 };
 static_assert(sizeof(BoundaryBall) == 6 * sizeof(float));
 
+// Where a set read from a file finds its SH coefficients (core/sample_set.cpp).
+class CoefficientsInFile;
+
 struct SampleSet {
     uint32_t shOrder = 5;        // bands; shOrder^2 coefficients per channel
     uint32_t channels = 1;       // 1 when sigma_t is grey, 3 when it differs per channel
@@ -69,7 +73,7 @@ struct SampleSet {
     std::vector<glm::vec2> region;     // [lo, hi] of the density slab holding b_i along parameters.regionAxis
     std::vector<glm::vec3> image;      // b_i mirrored across the nearest boundary of its region
     std::vector<BoundaryBall> boundary;// the SH hold exp(-tau) minus share times its transmittance
-    std::vector<float> sh;             // [sample][channel][coefficient]
+    std::vector<float> sh;             // [sample][channel][coefficient]; read them through coefficients()
     std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the ball and SH miss
     // The object's closed mesh in its own space as the preprocessor loaded it
     // (checked, zero-area faces dropped, faces outward), or empty. A render whose
@@ -77,8 +81,19 @@ struct SampleSet {
     // mesh file again (core/loaded_scene.h): the bunny's OFF file took 130 ms.
     TriangleMesh mesh;
 
+    // A set read from a file leaves sh empty and reads the coefficients from the
+    // file the first time they are asked for, from any thread: ss with traced
+    // light never asks (they are 30 MB of the bunny's 35 MB file, and copying
+    // them cost 0.1 s of the 800x800 command's processor time; docs/runtime.md,
+    // "The whole command, and page faults"). They were checked when the file was read; a
+    // file that no longer holds the same bytes throws Error("FILE: ..."). Filling
+    // sh replaces them.
+    std::shared_ptr<const CoefficientsInFile> coefficientsInFile;
+
     size_t size() const { return positions.size(); }
     size_t coefficientsPerSample() const { return size_t(channels) * shOrder * shOrder; }
+    // The SH coefficients, [sample][channel][coefficient].
+    const std::vector<float>& coefficients() const;
 };
 
 inline constexpr uint32_t kSampleFileVersion = 6;

@@ -42,7 +42,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
 }
 
 void GpuSamples::uploadCoefficients() {
-    const std::vector<float>& sh = source_->sh;
+    const std::vector<float>& sh = source_->coefficients();
     glNamedBufferStorage(buffers_[1], GLsizeiptr(std::max<size_t>(sh.size(), 1) * sizeof(float)),
                          sh.empty() ? nullptr : sh.data(), 0);
     // The coefficients are read through a texture buffer: llvmpipe gathers texel

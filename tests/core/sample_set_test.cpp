@@ -71,7 +71,7 @@ TEST(SampleFile, RoundTrips) {
     EXPECT_EQ(r.sceneFingerprint, 0x1234u);
     EXPECT_EQ(r.parameters.seed, 42u);
     EXPECT_EQ(r.positions, s.positions);
-    EXPECT_EQ(r.sh, s.sh);
+    EXPECT_EQ(r.coefficients(), s.sh);
     EXPECT_EQ(r.widths, s.widths);
     EXPECT_EQ(r.extinction, s.extinction);
     EXPECT_EQ(r.region, s.region);
@@ -92,6 +92,36 @@ TriangleMesh tetrahedron() {
     m.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
     m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     return m;
+}
+
+// The coefficients stay in the file until asked for (core/sample_set.h). 12 000
+// samples of 27 floats hold 1.3 MB of them: read and checked in two pieces.
+TEST(SampleFile, ReadsTheCoefficientsWhenAskedAndNoticesAChangedFile) {
+    test::ScratchDir dir;
+    const std::filesystem::path file = dir.path() / "s.lsf";
+    SampleSet s = makeSamples(12000);
+    for (BoundaryBall& b : s.boundary) b.depth = 0.1f;  // inside every ball's sphere
+    writeSampleFile(file, s);
+    const SampleSet first = readSampleFile(file), second = readSampleFile(file), third = readSampleFile(file);
+    EXPECT_EQ(first.coefficients(), s.sh);
+    // The same sizes, one coefficient different: the file a new preprocessing run leaves.
+    s.sh[300000] += 1.0f;
+    writeSampleFile(file, s);
+    try {
+        (void)second.coefficients();
+        ADD_FAILURE() << "a changed file went unnoticed";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(file.string() + ": sample file changed since it was read"),
+                  std::string::npos) << e.what();
+    }
+    // Once read they stay read, whatever happens to the file.
+    std::filesystem::remove(file);
+    EXPECT_EQ(first.coefficients()[300000], s.sh[300000] - 1.0f);
+    EXPECT_THROW((void)third.coefficients(), Error);
+    // A NaN in the second piece is refused when the file is read.
+    s.sh.back() = std::nanf("");
+    writeSampleFile(file, s);
+    EXPECT_NE(readError(file).find("non-finite value"), std::string::npos);
 }
 
 TEST(SampleFile, CarriesTheObjectsMesh) {

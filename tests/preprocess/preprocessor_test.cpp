@@ -39,7 +39,7 @@ TEST(Preprocessor, SphereSamplesAreInsideAndNearTheRequestedCount) {
         const Vec3 image(set.image[i]);
         EXPECT_NEAR(glm::length(image) - 1.0, 1.0 - glm::length(p), 2e-3);
     }
-    EXPECT_EQ(set.sh.size(), set.size() * 16);
+    EXPECT_EQ(set.coefficients().size(), set.size() * 16);
 }
 
 // sum_i w_i (gamma_i + gamma_i*) at p, w_i = scattering / sigma_s.
@@ -253,7 +253,8 @@ TEST(Preprocessor, UniformScaleGivesTheSameSamplesUpToScale) {
                                                         a.parameters.meanRadius);
             worstWidth = std::max(worstWidth, std::abs(b.widths[i] / c / a.widths[i] - 1.0));
         }
-        for (size_t k = 0; k < a.sh.size(); ++k) worstSh = std::max(worstSh, double(std::abs(a.sh[k] - b.sh[k])));
+        for (size_t k = 0; k < a.coefficients().size(); ++k)
+            worstSh = std::max(worstSh, double(std::abs(a.coefficients()[k] - b.coefficients()[k])));
         std::printf("scale %g: %zu samples; largest differences: position %.2e radii, width %.2e, SH %.2e\n", c,
                     b.size(), worstPosition, worstWidth, worstSh);
         EXPECT_LT(worstPosition, 1e-4) << c;

@@ -54,7 +54,8 @@ struct OneGaussian {
         one.boundary = {set.boundary[nearest]};
         one.truncationError = {set.truncationError[nearest]};
         const size_t n = set.coefficientsPerSample();
-        one.sh.assign(set.sh.begin() + std::ptrdiff_t(nearest * n), set.sh.begin() + std::ptrdiff_t((nearest + 1) * n));
+        const std::vector<float>& sh = set.coefficients();
+        one.sh.assign(sh.begin() + std::ptrdiff_t(nearest * n), sh.begin() + std::ptrdiff_t((nearest + 1) * n));
     }
     // The image at this size (full resolution), or of its columns [0, columns);
     // with fragments, the proxies' fragments counted (DrawOptions::fragments).
