@@ -181,6 +181,8 @@ SampleSet parseSampleFile(std::span<const char> bytes, const std::string& name) 
     return parse(r, name, {});
 }
 
+// Opened again when asked for, not kept open: a scene may hold more objects than
+// a process may open files.
 class CoefficientsInFile {
 public:
     CoefficientsInFile(std::filesystem::path file, uint64_t offset, size_t count, uint64_t digest)
@@ -188,18 +190,18 @@ public:
     const std::vector<float>& get() const {
         return values_.get([this] {
             const std::string name = file_.string();
-            const auto changed = [&] { return Error(name, "sample file changed since it was read (run the command again)"); };
-            // Its size is checked before anything is allocated.
-            if (regularFileSize(file_, "sample file") < offset_ + count_ * sizeof(float)) throw changed();
+            const Error changed(name, "sample file changed since it was read (run the command again)");
+            // The size first: nothing is allocated for a file that no longer holds them.
+            if (regularFileSize(file_, "sample file") < offset_ + count_ * sizeof(float)) throw changed;
             std::ifstream in(file_, std::ios::binary);
             if (!in) throw Error(name, "cannot open sample file");
             std::vector<float> v(count_);
             in.seekg(std::streamoff(offset_));
             in.read(reinterpret_cast<char*>(v.data()), std::streamsize(count_ * sizeof(float)));
-            if (!in || uint64_t(in.gcount()) != count_ * sizeof(float)) throw changed();
+            if (!in || uint64_t(in.gcount()) != count_ * sizeof(float)) throw changed;
             Fingerprint digest;
             digest.addBytes(v.data(), count_ * sizeof(float));
-            if (digest.value() != digest_) throw changed();
+            if (digest.value() != digest_) throw changed;
             return v;
         });
     }

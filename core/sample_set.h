@@ -85,9 +85,9 @@ struct SampleSet {
     // file the first time they are asked for, from any thread: ss with traced
     // light never asks (they are 30 MB of the bunny's 35 MB file, and copying
     // them cost 0.1 s of the 800x800 command's processor time; docs/runtime.md,
-    // "The whole command, and page faults"). They were checked when the file was read; a
-    // file that no longer holds the same bytes throws Error("FILE: ..."). Filling
-    // sh replaces them.
+    // "The whole command, and page faults"). They were checked when the file
+    // was read; a file that no longer holds the same bytes, or is gone, throws
+    // Error("FILE: ..."). Filling sh replaces them.
     std::shared_ptr<const CoefficientsInFile> coefficientsInFile;
 
     size_t size() const { return positions.size(); }
