@@ -44,12 +44,13 @@ Command addInfoCommand(CLI::App& app) {
                                                      : "lucent");
         Stats radius, width, sigmaS, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();
+        const std::vector<float>& sh = s.coefficients();  // read from the sample file here, once
         for (size_t i = 0; i < s.size(); ++i) {
             radius.add(s.radii[i]);
             width.add(s.widths[i]);
             sigmaS.add(s.scattering[i].g);  // times the sample's weight
             // Y_00 = 1 / (2 sqrt(pi)): the mean over directions of what the SH hold is c_00 / (2 sqrt(pi)).
-            dc.add(s.coefficients()[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
+            dc.add(sh[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
             error.add(s.truncationError[i]);
             if (s.boundary[i].valid()) {
                 share.add(s.boundary[i].share);
