@@ -10,6 +10,8 @@ namespace lucent {
 // What a finished program used (wait4's rusage): processor time and peak memory.
 struct ProgramUsage {
     double cpuSeconds = 0.0;  // user and system time
+    // Never below the caller's own resident set at the start: the child runs in
+    // the caller's memory until its exec, and Linux keeps the peak across it.
     long peakResidentKb = 0;
 };
 
