@@ -77,11 +77,9 @@ void FrameTargets::drawPeeled(const FrameContext& frame, bool firstIntervalOnly)
     }
     if (frame.options.scattering) {
         // The later entries and the exits, nearest first, by depth peeling: each
-        // layer keeps the nearest face beyond the layer before it.
-        const GlProgram& peel = peelProgram_;
-        glUseProgram(peel.id());
-        glUniformMatrix4fv(peel.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
-        glUniform1i(peel.uniform("previousLayer"), 0);
+        // layer keeps the nearest face beyond the layer before it. With the first
+        // interval only, no layer has one before it, and the peeling program is
+        // not even linked.
         for (int k = 0; k < gpu::kMaxRaySegments; ++k)
             for (const bool exits : {false, true}) {
                 if (!exits && k == 0) continue;  // the nearest front face is drawn above
@@ -92,13 +90,15 @@ void FrameTargets::drawPeeled(const FrameContext& frame, bool firstIntervalOnly)
                 glCullFace(exits ? GL_FRONT : GL_BACK);
                 // The first exit has no layer before it: the plain depth program keeps the nearest back face.
                 const bool plain = exits && k == 0;
-                if (plain) {
-                    glUseProgram(depthProgram_.id());
-                } else {
-                    glUseProgram(peel.id());
+                const GlProgram& program = plain ? depthProgram_ : peelProgram_.get();
+                glUseProgram(program.id());
+                if (!plain) {
+                    glUniformMatrix4fv(program.uniform("viewProjection"), 1, GL_FALSE,
+                                       glm::value_ptr(frame.viewProjection));
+                    glUniform1i(program.uniform("previousLayer"), 0);
                     glBindTextureUnit(0, (exits ? backLayers_[k - 1] : frontLayers_[k - 1]).texture());
                 }
-                drawMeshes(frame, plain ? depthProgram_ : peel);
+                drawMeshes(frame, program);
             }
     }
 }
@@ -128,10 +128,11 @@ void FrameTargets::drawInOnePass(const FrameContext& frame, const ViewSetup& vie
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layerFramebuffer_);
     glDisable(GL_CULL_FACE);  // the fragment tells front from back (gl_FrontFacing)
     glDisable(GL_DEPTH_TEST);
-    glUseProgram(layersProgram_.id());
-    glUniformMatrix4fv(layersProgram_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
+    const GlProgram& layers = layersProgram_.get();
+    glUseProgram(layers.id());
+    glUniformMatrix4fv(layers.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
     glBindImageTexture(0, layerArray_, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    drawMeshes(frame, layersProgram_);
+    drawMeshes(frame, layers);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
@@ -171,10 +172,11 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, Layers
     if (frame.options.hostDepthTexture) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, host_.framebuffer());
         glDepthFunc(GL_ALWAYS);
-        glUseProgram(copyDepthProgram_.id());
+        const GlProgram& copy = copyDepthProgram_.get();
+        glUseProgram(copy.id());
         glBindTextureUnit(0, frame.options.hostDepthTexture);
-        glUniform1i(copyDepthProgram_.uniform("source"), 0);
-        glUniform2f(copyDepthProgram_.uniform("sourcePerPixel"), float(frame.view.width) / float(view.width),
+        glUniform1i(copy.uniform("source"), 0);
+        glUniform2f(copy.uniform("sourcePerPixel"), float(frame.view.width) / float(view.width),
                     float(frame.view.height) / float(view.height));
         glBindVertexArray(emptyVao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);

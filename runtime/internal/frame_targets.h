@@ -74,9 +74,12 @@ public:
 
 private:
     GlProgram depthProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_only.frag"}};
-    GlProgram copyDepthProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}};
-    GlProgram peelProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}};
-    GlProgram layersProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_layers.frag"}};
+    // Linked on first use (GlProgramVariants): only with a host's depth texture;
+    // only for Layers::Peeled; only for Layers::OnePass. A frame's full and
+    // reduced targets each use one of the last two.
+    GlProgramVariants copyDepthProgram_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}}};
+    GlProgramVariants peelProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}}};
+    GlProgramVariants layersProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_layers.frag"}}};
     // segment.frag, and its FIRST_INTERVAL_ONLY and ONE_PASS_LAYERS variants.
     GlProgramVariants segmentPrograms_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "segment.frag"}}};
     void drawPeeled(const FrameContext& frame, bool firstIntervalOnly);

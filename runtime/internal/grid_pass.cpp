@@ -67,25 +67,26 @@ void GridPass::draw(FrameContext& frame) {
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(program_.id());
+    const GlProgram& program = program_.get();
+    glUseProgram(program.id());
     const glm::mat4 inverseViewProjection = glm::inverse(frame.viewProjection);
-    glUniformMatrix4fv(program_.uniform("inverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverseViewProjection));
-    glUniform3fv(program_.uniform("cameraPosition"), 1, glm::value_ptr(frame.view.cameraPosition));
-    glUniform2f(program_.uniform("viewportSize"), float(frame.view.width), float(frame.view.height));
-    glUniform1i(program_.uniform("raySegments"), GLint(gpu::kUnitRaySegments));
-    glUniform1i(program_.uniform("source"), GLint(gpu::kUnitGridSource));
-    glUniform1i(program_.uniform("extinction"), GLint(gpu::kUnitGridExtinction));
-    glUniform1i(program_.uniform("refraction"), GLint(gpu::kUnitGridRefraction));
+    glUniformMatrix4fv(program.uniform("inverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverseViewProjection));
+    glUniform3fv(program.uniform("cameraPosition"), 1, glm::value_ptr(frame.view.cameraPosition));
+    glUniform2f(program.uniform("viewportSize"), float(frame.view.width), float(frame.view.height));
+    glUniform1i(program.uniform("raySegments"), GLint(gpu::kUnitRaySegments));
+    glUniform1i(program.uniform("source"), GLint(gpu::kUnitGridSource));
+    glUniform1i(program.uniform("extinction"), GLint(gpu::kUnitGridExtinction));
+    glUniform1i(program.uniform("refraction"), GLint(gpu::kUnitGridRefraction));
     glBindTextureUnit(gpu::kUnitRaySegments, frame.targets.raySegments());
     glBindVertexArray(frame.targets.emptyVertexArray());
     for (const GpuGrid& g : grids_) {
         glBindTextureUnit(gpu::kUnitGridSource, g.source);
         glBindTextureUnit(gpu::kUnitGridExtinction, g.extinction);
         glBindTextureUnit(gpu::kUnitGridRefraction, g.refraction);
-        glUniform1i(program_.uniform("refracting"), g.refraction != 0);
-        glUniform3fv(program_.uniform("boundsMin"), 1, glm::value_ptr(glm::vec3(g.bounds.min)));
-        glUniform3fv(program_.uniform("boundsMax"), 1, glm::value_ptr(glm::vec3(g.bounds.max)));
-        glUniform1f(program_.uniform("voxel"), g.voxel);
+        glUniform1i(program.uniform("refracting"), g.refraction != 0);
+        glUniform3fv(program.uniform("boundsMin"), 1, glm::value_ptr(glm::vec3(g.bounds.min)));
+        glUniform3fv(program.uniform("boundsMax"), 1, glm::value_ptr(glm::vec3(g.bounds.max)));
+        glUniform1f(program.uniform("voxel"), g.voxel);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
 }

@@ -31,7 +31,8 @@ private:
         float voxel = 0;
     };
     std::vector<GpuGrid> grids_;
-    GlProgram program_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "grid_march.frag"}};
+    // Linked on first use: only scenes with grids (the hybrid methods) draw this pass.
+    GlProgramVariants program_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "grid_march.frag"}}};
 };
 
 }  // namespace lucent

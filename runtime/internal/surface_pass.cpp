@@ -46,7 +46,7 @@ void SurfacePass::draw(FrameContext& frame) {
     const bool anyThick =
         std::any_of(frame.objects.begin(), frame.objects.end(), [](const GpuObject& o) { return o.opticallyThick; });
     if (frame.options.scattering && anyThick) {
-        const GlProgram& p = thickProgram_;
+        const GlProgram& p = thickProgram_.get();
         begin(p, frame);
         for (const GpuObject& o : frame.objects) {
             if (!o.opticallyThick) continue;

@@ -14,7 +14,8 @@ public:
 private:
     void begin(const GlProgram& program, const FrameContext& frame) const;
     GlProgram surfaceProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}};
-    GlProgram thickProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "optically_thick.frag"}};
+    // Linked on first use: only scenes with optically thick objects need it.
+    GlProgramVariants thickProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "optically_thick.frag"}}};
 };
 
 }  // namespace lucent
