@@ -48,8 +48,8 @@ std::vector<std::string> words(const std::string& options) {
     return out;
 }
 
-double runOnce(const std::filesystem::path& lucent, const std::string& scene, int size, Variant& v,
-               const std::filesystem::path& image, const std::filesystem::path& log, bool timed) {
+void runOnce(const std::filesystem::path& lucent, const std::string& scene, int size, Variant& v,
+             const std::filesystem::path& image, const std::filesystem::path& log, bool timed) {
     std::vector<std::string> argv = {lucent.string(), "render", scene};
     argv.insert(argv.end(), v.words.begin(), v.words.end());
     for (const std::string& a : {std::string("--width"), std::to_string(size), std::string("--height"),
@@ -67,7 +67,6 @@ double runOnce(const std::filesystem::path& lucent, const std::string& scene, in
         v.cpu.push_back(usage.cpuSeconds);
         v.peakMb.push_back(double(usage.peakResidentKb) / 1024.0);
     }
-    return seconds;
 }
 
 }  // namespace
