@@ -1,7 +1,9 @@
 // OSMesa: Mesa's off-screen interface. Deprecated upstream but present in
 // Debian 12's Mesa 22.3, where it gives a 4.5 core context on llvmpipe.
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -10,31 +12,73 @@
 namespace lucent {
 namespace {
 
+// libOSMesa links LLVM, and a program linked to it loads and relocates LLVM
+// before main: 80-90 ms of every command on this project's machines (`lucent
+// --version` 113-141 -> 30-41 ms), most of which never draw with OSMesa. So it
+// is opened here, on first use. 8 is the ABI's major version since Mesa 10.
+constexpr const char* kLibrary = "libOSMesa.so.8";
+
+struct OsmesaApi {
+    decltype(&OSMesaCreateContextAttribs) createContextAttribs;
+    decltype(&OSMesaMakeCurrent) makeCurrent;
+    decltype(&OSMesaGetProcAddress) getProcAddress;
+    decltype(&OSMesaDestroyContext) destroyContext;
+};
+
+template <typename Function>
+void bind(void* library, const char* name, Function& out) {
+    out = reinterpret_cast<Function>(dlsym(library, name));
+    if (!out) throw Error(std::string("no usable OpenGL context: osmesa: ") + kLibrary + " has no " + name);
+}
+
+// Opened once per process (a static's initialisation is thread-safe, and a
+// failure throws each time it is asked for, since the static is then not set).
+const OsmesaApi& osmesa() {
+    static const OsmesaApi api = [] {
+        // RTLD_LOCAL: Mesa's and LLVM's names stay out of every later symbol lookup.
+        void* library = dlopen(kLibrary, RTLD_NOW | RTLD_LOCAL);
+        if (!library) {
+            const char* why = dlerror();
+            throw Error(std::string("no usable OpenGL context: osmesa: cannot load ") + kLibrary + ": " +
+                        (why ? why : "unknown error"));
+        }
+        OsmesaApi a{};
+        bind(library, "OSMesaCreateContextAttribs", a.createContextAttribs);
+        bind(library, "OSMesaMakeCurrent", a.makeCurrent);
+        bind(library, "OSMesaGetProcAddress", a.getProcAddress);
+        bind(library, "OSMesaDestroyContext", a.destroyContext);
+        return a;
+    }();
+    return api;
+}
+
 class OsmesaContext final : public OffscreenContext {
 public:
-    OsmesaContext() {
+    OsmesaContext() : api_(osmesa()) {
         const int attributes[] = {OSMESA_FORMAT,        OSMESA_RGBA, OSMESA_DEPTH_BITS,          24,
                                   OSMESA_PROFILE,       OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
                                   OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
-        context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+        context_ = api_.createContextAttribs(attributes, nullptr);
         if (!context_) throw Error("no usable OpenGL context: osmesa: OSMesaCreateContextAttribs failed (no 4.5 core profile?)");
         // Lucent draws into its own framebuffer objects; the default buffer is a token.
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
-            OSMesaDestroyContext(context_);
+        if (!api_.makeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
+            api_.destroyContext(context_);
             throw Error("no usable OpenGL context: osmesa: OSMesaMakeCurrent failed");
         }
-        loadGl("osmesa", [](const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); });
+        // The loader's callback is a plain function pointer: it reads the table itself.
+        loadGl("osmesa", [](const char* name) { return reinterpret_cast<void*>(osmesa().getProcAddress(name)); });
     }
-    ~OsmesaContext() override { OSMesaDestroyContext(context_); }
+    ~OsmesaContext() override { api_.destroyContext(context_); }
     const char* backendName() const override { return "osmesa"; }
     // A null context and buffer unbind the calling thread's (Mesa's osmesa.c).
-    void release() override { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
+    void release() override { api_.makeCurrent(nullptr, nullptr, 0, 0, 0); }
     void makeCurrent() override {
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
+        if (!api_.makeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
             throw Error("no usable OpenGL context: osmesa: OSMesaMakeCurrent failed");
     }
 
 private:
+    const OsmesaApi& api_;
     OSMesaContext context_ = nullptr;
     std::vector<unsigned char> buffer_ = std::vector<unsigned char>(4, 0);
 };
