@@ -475,6 +475,31 @@ TEST(Cli, OnlyWhatNeedsOpenVdbLoadsIt) {
     EXPECT_EQ(render.stderrText.find("openvdb"), std::string::npos);
 }
 
+// libOSMesa links LLVM, 80-90 ms of a command's start (docs/architecture.md):
+// it is opened only for an OSMesa context, and LLVM only for a context of
+// either kind. The OSMesa render shows LD_DEBUG=files would see both.
+TEST(Cli, OnlyAnOpenGlContextLoadsLlvm) {
+    test::ScratchDir dir;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
+    const auto render = [&](const std::string& options) {
+        return test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.pfm").string() +
+                                   " --width 8 --height 8 " + options,
+                               "LD_DEBUG=files");
+    };
+    const auto osmesa = render("--method ss --backend osmesa");
+    ASSERT_EQ(osmesa.exitCode, 0) << osmesa.stderrText;
+    EXPECT_NE(osmesa.stderrText.find("libOSMesa.so"), std::string::npos);
+    EXPECT_NE(osmesa.stderrText.find("libLLVM"), std::string::npos);
+    const auto egl = render("--method ss --backend egl");
+    ASSERT_EQ(egl.exitCode, 0) << egl.stderrText;
+    EXPECT_EQ(egl.stderrText.find("libOSMesa"), std::string::npos);
+    const auto reference = render("--method reference");
+    ASSERT_EQ(reference.exitCode, 0) << reference.stderrText;
+    EXPECT_EQ(reference.stderrText.find("libOSMesa"), std::string::npos);
+    EXPECT_EQ(reference.stderrText.find("libLLVM"), std::string::npos);
+}
+
 // --scheme published writes the thesis's scheme, which info reports.
 TEST(Cli, PublishedSchemeReachesTheSampleFile) {
     test::ScratchDir dir;
