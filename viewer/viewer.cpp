@@ -18,14 +18,11 @@
 #include "core/input_file.h"
 #include "core/loaded_scene.h"
 #include "methods/method_table.h"
-#ifdef LUCENT_HAVE_OPENCL
-#include "hybrid/mdom_scattering.h"
-#include "hybrid/multiple_scattering.h"
-#endif
 #include "runtime/internal/gl_program.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
+#include "viewer/scattering_grids.h"
 #include "viewer/viewer_shaders.h"
 #include "viewer/viewer_state.h"
 
@@ -169,42 +166,8 @@ Bounds3 placedBounds(const LoadedScene& loaded, const std::vector<Similarity>& p
     return bounds;
 }
 
-// The objects as the hybrid solves them: where they now stand. One moved since
-// the scene was read is loaded again there (mesh, blockers, density), once per
-// placement; the others are the scene's own.
-class PlacedObjects {
-public:
-    explicit PlacedObjects(const LoadedScene& loaded) : loaded_(loaded), moved_(loaded.objects.size()) {}
-    std::vector<const VolumeObject*> at(const std::vector<Similarity>& placements) {
-        std::vector<const VolumeObject*> objects;
-        std::vector<std::string> warnings;
-        for (size_t i = 0; i < loaded_.objects.size(); ++i) {
-            const VolumeObject& own = loaded_.objects[i];
-            if (placements[i] == own.placement()) {
-                objects.push_back(&own);
-                continue;
-            }
-            if (!moved_[i] || !(moved_[i]->placement() == placements[i])) {
-                ObjectDesc desc = own.desc();
-                desc.transform = placements[i];
-                moved_[i] = std::make_unique<VolumeObject>(desc, warnings);
-            }
-            objects.push_back(moved_[i].get());
-        }
-        return objects;
-    }
-
-private:
-    const LoadedScene& loaded_;
-    // Replaced only when the object moves, which ends any solve begun with it.
-    std::vector<std::unique_ptr<VolumeObject>> moved_;
-};
-
 }  // namespace
 
-// Voxels along each object's longest side when the viewer solves multiple
-// scattering: about a second per solve here (docs/hybrid.md), then free per frame.
-constexpr int kViewerGridResolution = 48;
 // The control panel's width in pixels, docked at the left of the window beside
 // the view (wide enough for its labels).
 constexpr int kPanelWidth = 380;
@@ -263,19 +226,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         double frameMs = 0.0;
         std::vector<double> frameTimes, loopTimes;  // drawing, and the whole loop: for the summary on closing
         auto loopStart = std::chrono::steady_clock::now();
-        // Multiple scattering: solved on the OpenCL device when asked for and when the lights move.
-#ifdef LUCENT_HAVE_OPENCL
-        std::unique_ptr<hybrid::MultipleScattering> hybridSolver;
-        std::unique_ptr<hybrid::MdomScattering> mdomSolver;
-        PlacedObjects placedObjects(loaded);
-        std::vector<std::unique_ptr<hybrid::MdomProgress>> mdomRuns;  // one per object while iterating
-        std::vector<hybrid::MdomSolution> mdomSolutions;              // the latest per object
-        Vec3 bakedFor(kInfinity);                                     // the eye the mdom grids were baked for
-#endif
-        using Multiple = ViewerState::Multiple;
-        Multiple gridsShown = Multiple::Off;
-        bool gridsValid = false, solving = false;
-        std::string solveStatus;
+        // Multiple scattering: solved on the OpenCL device when asked for, again when the lights or objects move.
+        ScatteringGrids grids(loaded);
         size_t scriptLine = 0;
         glm::dvec2 lastMouse(0.0);
         bool tabWasDown = false;
@@ -286,7 +238,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             if (!frameTimes.empty()) loopTimes.push_back(std::chrono::duration<double, std::milli>(now - loopStart).count());
             loopStart = now;
             glfwPollEvents();
-            if (state.waiting && !solving) state.waiting = false;
+            if (state.waiting && !grids.solving()) state.waiting = false;
             if (state.waiting) {
                 // a script's `wait`: the next line when the solve is done
             } else if (scriptLine < script.size()) {
@@ -328,85 +280,15 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
             if (state.lightsChanged) {
                 renderer.setLights(state.lights);
                 state.lightsChanged = false;
-                gridsValid = false;
+                grids.invalidate();
             }
             if (state.placementsChanged) {
                 for (size_t i = 0; i < state.placements.size(); ++i) renderer.setPlacement(i, state.placements[i]);
                 bounds = placedBounds(loaded, state.placements);
                 state.placementsChanged = false;
-                gridsValid = false;  // solved for where the objects stood
+                grids.invalidate();  // solved for where the objects stood
             }
-            if (state.multiple != gridsShown || (gridsShown != Multiple::Off && !gridsValid)) {
-                renderer.clearScatteringGrids();
-                gridsShown = Multiple::Off;
-                solving = false;
-                solveStatus.clear();
-                if (state.multiple != Multiple::Off) {
-#ifdef LUCENT_HAVE_OPENCL
-                    // No device (or a failing one) leaves the viewer running, without the grids.
-                    try {
-                        if (state.multiple == Multiple::Lbl) {
-                            if (!hybridSolver) hybridSolver = std::make_unique<hybrid::MultipleScattering>();
-                            hybrid::HybridSettings hs;
-                            hs.resolution = kViewerGridResolution;
-                            for (const VolumeObject* object : placedObjects.at(state.placements))
-                                renderer.addScatteringGrid(hybridSolver->solve(*object, state.lights, hs));
-                        } else {
-                            if (!mdomSolver) mdomSolver = std::make_unique<hybrid::MdomScattering>();
-                            hybrid::MdomSettings ms;
-                            ms.resolution = kViewerGridResolution;
-                            ms.directions = 24;
-                            mdomRuns.clear();
-                            for (const VolumeObject* object : placedObjects.at(state.placements))
-                                mdomRuns.push_back(mdomSolver->begin(*object, state.lights, ms));
-                            solving = true;
-                        }
-                        gridsShown = state.multiple;
-                        gridsValid = true;
-                    } catch (const Error& e) {
-                        renderer.clearScatteringGrids();
-                        std::fprintf(stderr, "lucent: warning: view: no multiple scattering: %s\n", e.what());
-                        state.multiple = Multiple::Off;
-                    }
-#else
-                    std::fprintf(stderr, "lucent: view: this build has no OpenCL: no multiple scattering\n");
-                    state.multiple = Multiple::Off;
-#endif
-                }
-            }
-#ifdef LUCENT_HAVE_OPENCL
-            // mdom: one more iteration per frame (thesis 5.3.3: each iteration's
-            // image shown as it comes), its grids baked towards the eye, and baked
-            // again whenever the eye moves.
-            if (gridsShown == Multiple::Mdom) {
-                try {
-                    const Vec3 eye = state.camera.camera().position;
-                    if (solving) {
-                        bool more = false;
-                        mdomSolutions.clear();
-                        for (auto& run : mdomRuns) {
-                            more = run->iterate() || more;
-                            mdomSolutions.push_back(run->solution());
-                        }
-                        const hybrid::MdomStats& st = mdomRuns.front()->stats();
-                        solveStatus = "mdom: iteration " + std::to_string(st.iterations) + (more ? "" : ", done");
-                        solving = more;
-                        bakedFor = Vec3(kInfinity);
-                    }
-                    if (eye != bakedFor) {
-                        renderer.clearScatteringGrids();
-                        for (const hybrid::MdomSolution& solution : mdomSolutions)
-                            renderer.addScatteringGrid(solution.towards(eye));
-                        bakedFor = eye;
-                    }
-                } catch (const Error& e) {
-                    renderer.clearScatteringGrids();
-                    std::fprintf(stderr, "lucent: warning: view: no multiple scattering: %s\n", e.what());
-                    state.multiple = gridsShown = Multiple::Off;
-                    solving = false;
-                }
-            }
-#endif
+            grids.update(state, renderer);
 
             const auto start = std::chrono::steady_clock::now();
             frame->bindAndClear();
@@ -467,8 +349,8 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
 #ifdef LUCENT_HAVE_OPENCL
                 int multiple = int(state.multiple);
                 ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
-                state.multiple = Multiple(multiple);
-                if (!solveStatus.empty()) ImGui::Text("%s", solveStatus.c_str());
+                state.multiple = ViewerState::Multiple(multiple);
+                if (!grids.status().empty()) ImGui::Text("%s", grids.status().c_str());
 #endif
                 ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
                 ImGui::SliderFloat("exposure (stops)", &state.exposureStops, -20.0f, 20.0f, "%+.1f");
