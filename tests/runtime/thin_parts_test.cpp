@@ -68,7 +68,7 @@ TEST(ThinParts, APlateAboutOneSampleRadiusThickMeetsTheGoal) {
 }
 
 // Four radii thick: below 5.5 radii across the Gaussians are widened too
-// (preprocess/preprocessor.cpp, kThinWidening); at 3 radii this plate was at 5.9%.
+// (preprocess/internal/sample_description.cpp, kThinWidening); at 3 radii this plate was at 5.9%.
 TEST(ThinParts, APlateFourSampleRadiiThickMeetsTheGoal) {
     test::ScratchDir dir;
     const auto mesh = test::writeBox(dir, "plate.obj", Vec3(-1, -1, -0.03), Vec3(1, 1, 0.03));
