@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "apps/commands.h"
-#include "apps/run_program.h"
+#include "core/run_program.h"
 #include "bench/accuracy_sweep.h"
 #include "bench/cgal_demo_meshes.h"
 #include "core/error.h"

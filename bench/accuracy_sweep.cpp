@@ -1,27 +1,22 @@
 #include "bench/accuracy_sweep.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <map>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/statistics.h"
+#include "core/stopwatch.h"
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "core/scene.h"
 #include "methods/method_table.h"
-#include "runtime/internal/gl.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
 
 namespace lucent {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string format(double v) {
     char text[32];
@@ -134,9 +129,9 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
                          setting.knob.c_str(), setting.value.c_str());
             auto& [sampleSets, preprocessSeconds] = preprocessed[preprocessKey(setting.preprocess)];
             if (sampleSets.empty()) {
-                const auto start = Clock::now();
+                const Stopwatch stopwatch;
                 for (const auto& o : objects) sampleSets.push_back(preprocessObject(o, setting.preprocess));
-                preprocessSeconds = secondsSince(start);
+                preprocessSeconds = stopwatch.seconds();
             }
             // In memory, but through the sample-file contract: made for these objects.
             attachSamples(loaded, sampleSets);
@@ -150,19 +145,12 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
             DrawOptions draw;
             draw.surface = false;
             draw.tracedLight = setting.tracedLight;
-            std::vector<double> times;
-            for (int f = 0; f < options.warmup + options.frames; ++f) {
-                frame.bindAndClear();
-                glFinish();
-                const auto start = Clock::now();
-                renderer.draw(view, draw);
-                glFinish();
-                if (f >= options.warmup) times.push_back(secondsSince(start));
-            }
+            const double frameSeconds = medianFrameSeconds(
+                options.warmup, options.frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, draw); });
             const Image image = frame.read();
             const ImageError all = compareImages(image, reference), interior = compareImages(image, reference, 3);
 
-            SweepRow row{sceneName, setting.knob, setting.value, sampleCount, preprocessSeconds, 1e3 * median(times),
+            SweepRow row{sceneName, setting.knob, setting.value, sampleCount, preprocessSeconds, 1e3 * frameSeconds,
                          all.relativeRmse, all.meanAbsoluteRelativeError, interior.relativeRmse,
                          interior.meanAbsoluteRelativeError, all.meanRatio};
             rows.push_back(row);

@@ -25,9 +25,10 @@
 #include <sstream>
 #include <thread>
 
-#include "apps/run_program.h"
 #include "core/error.h"
+#include "core/run_program.h"
 #include "core/statistics.h"
+#include "core/stopwatch.h"
 
 using namespace lucent;
 
@@ -56,9 +57,9 @@ void runOnce(const std::filesystem::path& lucent, const std::string& scene, int 
                                  std::to_string(size), std::string("-o"), image.string()})
         argv.push_back(a);
     ProgramUsage usage;
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     const int code = runProgram(argv, log, &usage);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds = stopwatch.seconds();
     if (code != 0)
         throw Error(log.string(), "lucent render " + scene + " " + v.options + " failed (exit " +
                                       std::to_string(code) + "); its output is in this file");

@@ -19,7 +19,6 @@
 // own noise, measured from the two, is taken out of the errors.
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -27,6 +26,7 @@
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
+#include "core/stopwatch.h"
 #include "hybrid/mdom_scattering.h"
 #include "hybrid/multiple_scattering.h"
 #include "hybrid/voxelisation.h"
@@ -111,10 +111,10 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
             // The truth twice, with independent seeds: its own noise is
             // measured and taken out of every error (luminanceRelativeRmse of
             // three images). path_s is the time of one of them.
-            auto t0 = std::chrono::steady_clock::now();
+            Stopwatch stopwatch;
             settings.seed = 1;
             const Image pathA = renderWith(findMethod("path"), loaded, settings);
-            const double pathSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double pathSeconds = stopwatch.seconds();
             settings.seed = 2;
             const Image pathB = renderWith(findMethod("path"), loaded, settings);
             Image path = pathA;
@@ -127,9 +127,9 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
                     settings.gridResolution = grid;
                     if (n > 0) settings.directions = n;
                     if (m > 0) settings.moments = m;
-                    t0 = std::chrono::steady_clock::now();
+                    stopwatch.restart();
                     const Image image = renderWith(findMethod(method), loaded, settings);
-                    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                    const double seconds = stopwatch.seconds();
                     const NoisyReferenceError e = luminanceRelativeRmse(image, pathA, pathB);
                     std::printf("%s,%.2f,%.2f,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.1f\n", model.c_str(), albedo, g,
                                 grid, n, m, e.noise, ssError.debiased, e.debiased, e.raw,

@@ -14,21 +14,19 @@
 // tests never need it.
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
-#include "apps/run_program.h"
 #include "core/error.h"
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
 #include "core/scene.h"
-#include "core/statistics.h"
+#include "core/run_program.h"
+#include "core/stopwatch.h"
 #include "core/volume_object.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
@@ -36,10 +34,6 @@
 using namespace lucent;
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The scene: the default scene's first object and first light, grey
 // sigma_t 8 and albedo 0.95, the camera moved to `distance` along its own
@@ -104,16 +98,16 @@ int main(int argc, char** argv) {
         std::filesystem::create_directories(outDir);
         const std::filesystem::path dir = std::filesystem::absolute(outDir);
 
-        auto t0 = std::chrono::steady_clock::now();
+        Stopwatch stopwatch;
         const SampleSet sampleSet = checkSamplesBelong(
             object, preprocessObject(object, qualityPreset("default")), "in-memory samples of " + object.desc().name);
-        const double preprocessSeconds = secondsSince(t0);
+        const double preprocessSeconds = stopwatch.seconds();
 
-        t0 = std::chrono::steady_clock::now();
+        stopwatch.restart();
         ReferenceSettings rs;
         rs.surface = false;
         const Image reference = ReferenceRenderer(scene, objects).render(rs);
-        const double referenceSeconds = secondsSince(t0);
+        const double referenceSeconds = stopwatch.seconds();
         writeImage(dir / "reference.pfm", reference);
 
         // ss: frames after warm-up on this machine's OpenGL.
@@ -125,18 +119,11 @@ int main(int argc, char** argv) {
         const ViewSetup view = viewSetupFor(scene.camera, bounds);
         DrawOptions options;
         options.surface = false;
-        std::vector<double> times;
-        for (int f = 0; f < warmup + frames; ++f) {
-            frame.bindAndClear();
-            glFinish();
-            const auto start = std::chrono::steady_clock::now();
-            renderer.draw(view, options);
-            glFinish();
-            if (f >= warmup) times.push_back(secondsSince(start));
-        }
+        const double ssSeconds = medianFrameSeconds(
+            warmup, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
         const Image ss = frame.read();
         writeImage(dir / "ss.pfm", ss);
-        const double ssSeconds = median(times), ssError = compareImages(ss, reference, 2).relativeRmse;
+        const double ssError = compareImages(ss, reference, 2).relativeRmse;
 
         // Cycles, in one Blender process for every sample count.
         writeObj(dir / "mesh.obj", object.mesh());

@@ -9,7 +9,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 
 #include "core/error.h"
@@ -20,7 +19,6 @@
 #include "core/image_compare.h"
 #include "preprocess/preprocessor.h"
 #include "reference/reference_renderer.h"
-#include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
@@ -69,22 +67,15 @@ int main(int argc, char** argv) {
         const ViewSetup view = viewSetupFor(scene.camera, bounds);
         OffscreenFrame frame(size, size);
         std::printf("scene %s, %dx%d, %s (%s), median of %d frames after %d warm-up\n\n", sceneFile.c_str(), size,
-                    size, context->backendName(), reinterpret_cast<const char*>(glGetString(GL_RENDERER)), frames,
+                    size, context->backendName(), glRenderer().c_str(), frames,
                     warmup);
 
         auto measure = [&](const SampleSet& samples, int lights, ScatterFragments* counted) {
             ScatteringRenderer renderer;
             renderer.addObject(translucentObjectFor(object, samples));
             renderer.setLights(lightsAround(lights, bounds));
-            std::vector<double> times;
-            for (int f = 0; f < warmup + frames; ++f) {
-                frame.bindAndClear();
-                glFinish();
-                const auto start = std::chrono::steady_clock::now();
-                renderer.draw(view);
-                glFinish();
-                if (f >= warmup) times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            }
+            const double seconds =
+                medianFrameSeconds(warmup, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view); });
             if (counted) {
                 // The proxies' fragments at full resolution (reduced, the upsampling's
                 // own fragments would count): shaded, and those whose Gaussian is above
@@ -97,7 +88,7 @@ int main(int argc, char** argv) {
                 frame.bindAndClear();
                 renderer.draw(view, options);
             }
-            return median(times);
+            return seconds;
         };
         auto samplesFor = [&](int count) {
             PreprocessSettings s;
@@ -123,11 +114,8 @@ int main(int argc, char** argv) {
                     options.surface = false;
                     options.scatterScale = scales[k];
                     frame.bindAndClear();
-                    glFinish();
-                    const auto start = std::chrono::steady_clock::now();
-                    renderer.draw(view, options);
-                    glFinish();
-                    if (round >= warmup) times[k].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                    const double t = timeGlWork([&] { renderer.draw(view, options); });
+                    if (round >= warmup) times[k].push_back(t);
                     if (round == 0) images.push_back(frame.read());
                 }
             std::fprintf(stderr, "rendering the reference...\n");
@@ -193,11 +181,7 @@ int main(int argc, char** argv) {
                     DrawOptions options;
                     options.tracedLight = kind != 1;
                     frame.bindAndClear();
-                    glFinish();
-                    const auto start = std::chrono::steady_clock::now();
-                    renderers[k]->draw(view, options);
-                    glFinish();
-                    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    const double t = timeGlWork([&] { renderers[k]->draw(view, options); });
                     if (round >= warmup) (kind == 0 ? still : kind == 1 ? moving : traced)[k].push_back(t);
                 }
         std::printf("\n%zu samples, %d interleaved rounds:\n\n"

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "runtime/internal/gl.h"
 #include "runtime/offscreen_context.h"
 #include "reference/path_method.h"
 #include "reference/reference_method.h"
@@ -73,10 +72,7 @@ bool openGlIsSoftware() {
     static const bool software = [] {
         try {
             const auto context = OffscreenContext::create(GlBackend::Auto);
-            const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-            const std::string name = renderer ? renderer : "";
-            return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
-                   name.find("swrast") != std::string::npos;
+            return glIsSoftware();
         } catch (const Error&) {
             return true;  // no OpenGL at all: the CPU reference is what is left
         }

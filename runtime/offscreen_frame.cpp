@@ -5,8 +5,16 @@
 
 #include "core/error.h"
 #include "runtime/internal/gl.h"
+#include "runtime/internal/gl_program.h"
 
 namespace lucent {
+
+struct OffscreenFrame::Presenter {
+    GlProgram program{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "present.frag"}};
+    GLuint emptyVao = 0;
+    Presenter() { glCreateVertexArrays(1, &emptyVao); }
+    ~Presenter() { glDeleteVertexArrays(1, &emptyVao); }
+};
 
 OffscreenFrame::OffscreenFrame(int width, int height) : width_(width), height_(height) {
     GLint maxSize = 0;
@@ -28,6 +36,7 @@ OffscreenFrame::OffscreenFrame(int width, int height) : width_(width), height_(h
 }
 
 OffscreenFrame::~OffscreenFrame() {
+    presenter_.reset();
     glDeleteFramebuffers(1, &framebuffer_);
     glDeleteTextures(1, &colour_);
     glDeleteTextures(1, &depth_);
@@ -55,6 +64,43 @@ Image OffscreenFrame::read() const {
     for (glm::vec3& c : image.pixels)
         for (int k = 0; k < 3; ++k)
             if (!std::isfinite(c[k]) || c[k] < 0.0f) c[k] = 0.0f;
+    return image;
+}
+
+void OffscreenFrame::present(int windowWidth, int windowHeight, int x, int y, float exposure) const {
+    if (!presenter_) presenter_ = std::make_unique<Presenter>();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, windowWidth, windowHeight);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glViewport(x, y, width_, height_);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    const GlProgram& program = presenter_->program;
+    glUseProgram(program.id());
+    glBindTextureUnit(0, colour_);
+    glUniform1i(program.uniform("radiance"), 0);
+    glUniform1f(program.uniform("exposure"), exposure);
+    glUniform2i(program.uniform("offset"), x, y);
+    glBindVertexArray(presenter_->emptyVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+Image readWindow(int width, int height) {
+    std::vector<float> rgb(size_t(width) * height * 3);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
+    Image image(width, height);
+    auto linear = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+    for (int y = 0; y < height; ++y)  // GL rows start at the bottom
+        for (int x = 0; x < width; ++x) {
+            const float* p = &rgb[(size_t(height - 1 - y) * width + x) * 3];
+            image.at(x, y) = glm::vec3(linear(p[0]), linear(p[1]), linear(p[2]));
+        }
     return image;
 }
 

@@ -3,6 +3,8 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/statistics.h"
+#include "core/stopwatch.h"
 #include "runtime/internal/gl.h"
 
 namespace lucent {
@@ -24,5 +26,37 @@ void loadGl(const char* backend, void* (*getProcAddress)(const char*)) {
 }
 
 bool glLoaded() { return loaded; }
+
+std::string glRenderer() {
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return name ? name : "";
+}
+
+bool glIsSoftware() {
+    const std::string name = glRenderer();
+    return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos ||
+           name.find("swrast") != std::string::npos;
+}
+
+void finishGl() { glFinish(); }
+
+double timeGlWork(const std::function<void()>& work) {
+    glFinish();
+    const Stopwatch stopwatch;
+    work();
+    glFinish();
+    return stopwatch.seconds();
+}
+
+double medianFrameSeconds(int warmup, int frames, const std::function<void()>& prepare,
+                          const std::function<void()>& draw) {
+    std::vector<double> times;
+    for (int f = 0; f < warmup + frames; ++f) {
+        prepare();
+        const double seconds = timeGlWork(draw);
+        if (f >= warmup) times.push_back(seconds);
+    }
+    return median(times);
+}
 
 }  // namespace lucent

@@ -3,6 +3,9 @@
 // keeps its own OpenGL 4.5 function pointers (a glad loader whose names are all
 // prefixed lucent_, runtime/CMakeLists.txt), so a host that loads GL itself
 // (glad, libepoxy, GLEW, ...) links beside it with no clash of symbols or macros.
+#include <functional>
+#include <string>
+
 namespace lucent {
 
 // An OpenGL object name (a GLuint) in Lucent's public interface.
@@ -16,5 +19,25 @@ void loadGl(const char* backend, void* (*getProcAddress)(const char*));
 
 // Whether loadGl has succeeded in this process.
 bool glLoaded();
+
+// The current context's renderer (GL_RENDERER), for reports: "llvmpipe (LLVM
+// 15.0.6, 256 bits)" on Mesa's software rasteriser.
+std::string glRenderer();
+
+// Whether that renderer rasterises on the CPU (llvmpipe, softpipe, swrast).
+bool glIsSoftware();
+
+// Waits until the current context has done all the work it was given (glFinish).
+void finishGl();
+
+// The wall time of the OpenGL work that work() gives, in seconds, counted as a
+// frame's time is: the queue drained before it starts and after it ends, since
+// the driver runs the commands on threads of its own, later.
+double timeGlWork(const std::function<void()>& work);
+
+// The median of timeGlWork(draw) over `frames` runs after `warmup` untimed ones;
+// before each run, prepare() (binding and clearing the target) runs untimed.
+double medianFrameSeconds(int warmup, int frames, const std::function<void()>& prepare,
+                          const std::function<void()>& draw);
 
 }  // namespace lucent

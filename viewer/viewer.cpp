@@ -1,14 +1,12 @@
 #include "viewer/viewer.h"
 
-#include "runtime/internal/gl.h"  // glad before GLFW, and GLFW without its own GL header
-#define GLFW_INCLUDE_NONE
+#define GLFW_INCLUDE_NONE  // Lucent's runtime loads OpenGL itself (runtime/opengl.h)
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <glm/gtc/type_ptr.hpp>
@@ -17,13 +15,13 @@
 #include "core/image.h"
 #include "core/input_file.h"
 #include "core/loaded_scene.h"
+#include "core/statistics.h"
+#include "core/stopwatch.h"
 #include "methods/method_table.h"
-#include "runtime/internal/gl_program.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
 #include "viewer/scattering_grids.h"
-#include "viewer/viewer_shaders.h"
 #include "viewer/viewer_state.h"
 
 namespace lucent {
@@ -58,6 +56,25 @@ private:
         return text;
     }
     GLFWwindow* window_ = nullptr;
+};
+
+// Dear ImGui on the window, for as long as the viewer runs.
+class ImGuiSession {
+public:
+    explicit ImGuiSession(GLFWwindow* window) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;
+        ImGui_ImplGlfw_InitForOpenGL(window, true);
+        ImGui_ImplOpenGL3_Init("#version 450 core");
+    }
+    ~ImGuiSession() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    ImGuiSession(const ImGuiSession&) = delete;
+    ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
 std::vector<std::string> readScript(const std::filesystem::path& file) {
@@ -166,227 +183,229 @@ Bounds3 placedBounds(const LoadedScene& loaded, const std::vector<Similarity>& p
     return bounds;
 }
 
-}  // namespace
 
 // The control panel's width in pixels, docked at the left of the window beside
 // the view (wide enough for its labels).
 constexpr int kPanelWidth = 380;
 
-// What the window shows, panel included, read back before it is swapped: PNG
-// bytes as displayed (the tone mapping already applied).
-void saveWindow(const std::string& file, int width, int height) {
-    std::vector<float> rgb(size_t(width) * height * 3);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data());
-    Image image(width, height);
-    // Rows bottom-up in GL; sRGB values back to linear, so that writing with
-    // exposure 1 encodes them again as they were shown.
-    auto linear = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const float* p = &rgb[(size_t(height - 1 - y) * width + x) * 3];
-            image.at(x, y) = glm::vec3(linear(p[0]), linear(p[1]), linear(p[2]));
+// One run of the viewer: the window, what it shows and the state the user and
+// the script change. run() is the frame loop; each step of a frame is a
+// function of its own.
+class Viewer {
+public:
+    Viewer(const SceneDesc& scene, const ViewerOptions& options, std::vector<std::string> script,
+           const LoadedScene& loaded, std::string methodName)
+        : options_(options), loaded_(loaded), methodName_(std::move(methodName)), script_(std::move(script)),
+          state_(scene), bounds_(loaded.bounds()),
+          window_((options.width ? options.width : scene.camera.width) + kPanelWidth,
+                  options.height ? options.height : scene.camera.height),
+          grids_(loaded) {
+        state_.camera.resize(options.width ? options.width : scene.camera.width,
+                             options.height ? options.height : scene.camera.height);
+        for (size_t i = 0; i < loaded.objects.size(); ++i)
+            renderer_.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
+    }
+
+    void run() {
+        Stopwatch sinceLastFrame;
+        while (!glfwWindowShouldClose(window_.get()) && !state_.quit) {
+            if (!drawTimes_.empty()) loopTimes_.push_back(sinceLastFrame.milliseconds());
+            sinceLastFrame.restart();
+            glfwPollEvents();
+            followScript();
+            readInput();
+            int fbWidth, fbHeight;
+            glfwGetFramebufferSize(window_.get(), &fbWidth, &fbHeight);
+            // The view fills the window beside the docked panel, or all of it.
+            const int panelWidth = state_.panel ? std::min(kPanelWidth, fbWidth - 1) : 0;
+            if (fbWidth - panelWidth <= 0 || fbHeight <= 0) continue;
+            resizeFrame(fbWidth - panelWidth, fbHeight);
+            applyEdits();
+            drawScene();
+            const std::vector<std::string> withPanel = saveViewScreenshots();
+            frame_->present(fbWidth, fbHeight, panelWidth, 0, exposure());
+            drawPanel(panelWidth, fbHeight);
+            for (const std::string& file : withPanel) {
+                writeImage(file, readWindow(fbWidth, fbHeight), 1.0f);
+                std::fprintf(stderr, "lucent: view: saved %s (with the panel)\n", file.c_str());
+            }
+            glfwSwapBuffers(window_.get());
         }
-    writeImage(file, image, 1.0f);
-}
+        printSummary();
+    }
+
+private:
+    // The script's next line, one per frame; after the last, the screenshot
+    // asked for on the command line, and the end.
+    void followScript() {
+        if (state_.waiting && !grids_.solving()) state_.waiting = false;
+        if (state_.waiting) return;  // a script's `wait`: the next line when the solve is done
+        if (scriptLine_ < script_.size()) {
+            applyScriptLine(state_, script_[scriptLine_], options_.script.string() + ":" + std::to_string(scriptLine_ + 1));
+            ++scriptLine_;
+        } else if (!options_.screenshot.empty()) {
+            state_.screenshots.push_back({options_.screenshot.string(), false});
+            state_.quit = true;
+        }
+    }
+
+    // Left drag orbits, right drag pans, the wheel zooms (unless over the
+    // panel); Tab shows or hides the panel.
+    void readInput() {
+        GLFWwindow* window = window_.get();
+        glm::dvec2 mouse;
+        glfwGetCursorPos(window, &mouse.x, &mouse.y);
+        if (!ImGui::GetIO().WantCaptureMouse) {
+            const glm::dvec2 delta = mouse - lastMouse_;
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) state_.camera.orbit(-0.3 * delta.x, 0.3 * delta.y);
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state_.camera.pan(-1e-3 * delta.x, 1e-3 * delta.y);
+            const float wheel = ImGui::GetIO().MouseWheel;
+            if (wheel != 0.0f) state_.camera.zoom(std::pow(0.9, wheel));
+        }
+        lastMouse_ = mouse;
+        const bool tabDown = glfwGetKey(window, GLFW_KEY_TAB) == GLFW_PRESS;
+        if (tabDown && !tabWasDown_ && !ImGui::GetIO().WantCaptureKeyboard) state_.panel = !state_.panel;
+        tabWasDown_ = tabDown;
+    }
+
+    void resizeFrame(int width, int height) {
+        if (frame_ && width == frameWidth_ && height == frameHeight_) return;
+        frame_ = std::make_unique<OffscreenFrame>(width, height);
+        frameWidth_ = width;
+        frameHeight_ = height;
+        state_.camera.resize(width, height);
+    }
+
+    // Lights and placements the panel or the script changed reach the renderer,
+    // and the multiple scattering is solved again for them.
+    void applyEdits() {
+        if (state_.lightsChanged) {
+            renderer_.setLights(state_.lights);
+            state_.lightsChanged = false;
+            grids_.invalidate();
+        }
+        if (state_.placementsChanged) {
+            for (size_t i = 0; i < state_.placements.size(); ++i) renderer_.setPlacement(i, state_.placements[i]);
+            bounds_ = placedBounds(loaded_, state_.placements);
+            state_.placementsChanged = false;
+            grids_.invalidate();  // solved for where the objects stood
+        }
+        grids_.update(state_, renderer_);
+    }
+
+    void drawScene() {
+        frame_->bindAndClear();
+        DrawOptions drawOptions;
+        drawOptions.surface = state_.surface;
+        drawOptions.scattering = state_.scattering;
+        drawOptions.extinctionScale = state_.extinctionScale;
+        drawOptions.tracedLight = state_.tracedLight;
+        frameMs_ = 1e3 * timeGlWork([&] { renderer_.draw(viewSetupFor(state_.camera.camera(), bounds_), drawOptions); });
+        drawTimes_.push_back(frameMs_);
+        if (std::isnan(state_.exposureStops)) state_.exposureStops = std::log2(autoExposure(frame_->read()));
+    }
+
+    float exposure() const { return std::exp2(state_.exposureStops); }
+
+    // Saves the screenshots of the view alone; returns those that want the
+    // whole window, saved once the panel is drawn.
+    std::vector<std::string> saveViewScreenshots() {
+        std::vector<std::string> withPanel;
+        for (const auto& shot : state_.screenshots) {
+            if (shot.withPanel) {
+                withPanel.push_back(shot.file);
+                continue;
+            }
+            writeImage(shot.file, frame_->read(), exposure());
+            std::fprintf(stderr, "lucent: view: saved %s\n", shot.file.c_str());
+        }
+        state_.screenshots.clear();
+        return withPanel;
+    }
+
+    void drawPanel(int panelWidth, int height) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (state_.panel) {
+            ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+            ImGui::SetNextWindowSize(ImVec2(float(panelWidth), float(height)), ImGuiCond_Always);
+            ImGui::Begin("Lucent (Tab hides)", nullptr,
+                         ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+            ImGui::PushItemWidth(-150.0f);  // room for the labels
+            ImGui::Text("method %s: %.1f ms per frame, %zu samples", methodName_.c_str(), frameMs_,
+                        renderer_.sampleCount());
+            passesPanel();
+            ImGui::Separator();
+            objectsPanel(state_, loaded_);
+            ImGui::Separator();
+            lightsPanel(state_);
+            ImGui::PopItemWidth();
+            ImGui::End();
+        }
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
+
+    // What the frame shows, the medium's scale, the exposure and the screenshot button.
+    void passesPanel() {
+        ImGui::Checkbox("surface", &state_.surface);
+        ImGui::SameLine();
+        ImGui::Checkbox("scattering", &state_.scattering);
+        ImGui::SameLine();
+        ImGui::Checkbox("traced light", &state_.tracedLight);
+#ifdef LUCENT_HAVE_OPENCL
+        int multiple = int(state_.multiple);
+        ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
+        state_.multiple = ViewerState::Multiple(multiple);
+        if (!grids_.status().empty()) ImGui::Text("%s", grids_.status().c_str());
+#endif
+        ImGui::SliderFloat("medium scale", &state_.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        ImGui::SliderFloat("exposure (stops)", &state_.exposureStops, -20.0f, 20.0f, "%+.1f");
+        if (ImGui::Button("save screenshot")) state_.screenshots.push_back({"lucent-screenshot.png", screenshotPanel_});
+        ImGui::SameLine();
+        ImGui::Checkbox("with the panel", &screenshotPanel_);
+    }
+
+    void printSummary() const {
+        if (loopTimes_.empty()) return;
+        const double shown = median(loopTimes_);
+        std::fprintf(stderr, "lucent: view: %zu frames at %dx%d: median %.1f ms to draw, %.1f ms per frame shown (%.1f fps)\n",
+                     loopTimes_.size(), frameWidth_, frameHeight_, median(drawTimes_), shown, 1e3 / shown);
+    }
+
+    const ViewerOptions& options_;
+    const LoadedScene& loaded_;
+    const std::string methodName_;
+    const std::vector<std::string> script_;
+    size_t scriptLine_ = 0;
+    ViewerState state_;
+    Bounds3 bounds_;
+    GlfwWindow window_;
+    ImGuiSession imgui_{window_.get()};
+    ScatteringRenderer renderer_;
+    // Multiple scattering: solved on the OpenCL device when asked for, again when the lights or objects move.
+    ScatteringGrids grids_;
+    std::unique_ptr<OffscreenFrame> frame_;
+    int frameWidth_ = 0, frameHeight_ = 0;
+    double frameMs_ = 0.0;
+    std::vector<double> drawTimes_, loopTimes_;  // drawing, and the whole loop: for the summary on closing
+    glm::dvec2 lastMouse_{0.0};
+    bool tabWasDown_ = false;
+    bool screenshotPanel_ = false;  // the panel's own screenshot button: with the panel?
+};
+
+}  // namespace
 
 void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
-    const std::vector<std::string> script = readScript(options.script);  // cheap: its errors come first
+    std::vector<std::string> script = readScript(options.script);  // cheap: its errors come first
     // The viewer draws with the interactive method of the table, in its own window.
     const MethodEntry& method = findMethod("ss");
     if (const std::string why = method.unavailableReason(); !why.empty())
         throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
     const LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
-    Bounds3 bounds = loaded.bounds();
-
-    ViewerState state(scene);
-    const int width = options.width ? options.width : scene.camera.width;
-    const int height = options.height ? options.height : scene.camera.height;
-    state.camera.resize(width, height);
-    GlfwWindow window(width + kPanelWidth, height);  // the view keeps its size beside the panel
-
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui_ImplGlfw_InitForOpenGL(window.get(), true);
-    ImGui_ImplOpenGL3_Init("#version 450 core");
-    {
-        ScatteringRenderer renderer;
-        for (size_t i = 0; i < loaded.objects.size(); ++i)
-            renderer.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
-        std::unique_ptr<OffscreenFrame> frame;
-        int frameWidth = 0, frameHeight = 0;
-        GlProgram tonemap{{GL_VERTEX_SHADER, "fullscreen.vert"},
-                          {GL_FRAGMENT_SHADER, "tonemap.frag", viewerShader("tonemap.frag")}};
-        GLuint emptyVao;
-        glCreateVertexArrays(1, &emptyVao);
-        double frameMs = 0.0;
-        std::vector<double> frameTimes, loopTimes;  // drawing, and the whole loop: for the summary on closing
-        auto loopStart = std::chrono::steady_clock::now();
-        // Multiple scattering: solved on the OpenCL device when asked for, again when the lights or objects move.
-        ScatteringGrids grids(loaded);
-        size_t scriptLine = 0;
-        glm::dvec2 lastMouse(0.0);
-        bool tabWasDown = false;
-        bool screenshotPanel = false;  // the panel's own screenshot button: with the panel?
-
-        while (!glfwWindowShouldClose(window.get()) && !state.quit) {
-            const auto now = std::chrono::steady_clock::now();
-            if (!frameTimes.empty()) loopTimes.push_back(std::chrono::duration<double, std::milli>(now - loopStart).count());
-            loopStart = now;
-            glfwPollEvents();
-            if (state.waiting && !grids.solving()) state.waiting = false;
-            if (state.waiting) {
-                // a script's `wait`: the next line when the solve is done
-            } else if (scriptLine < script.size()) {
-                applyScriptLine(state, script[scriptLine], options.script.string() + ":" + std::to_string(scriptLine + 1));
-                ++scriptLine;
-            } else if (!options.screenshot.empty()) {
-                state.screenshots.push_back({options.screenshot.string(), false});
-                state.quit = true;
-            }
-
-            // Mouse: left drag orbits, right drag pans, wheel zooms (unless over the panel).
-            glm::dvec2 mouse;
-            glfwGetCursorPos(window.get(), &mouse.x, &mouse.y);
-            if (!ImGui::GetIO().WantCaptureMouse) {
-                const glm::dvec2 delta = mouse - lastMouse;
-                if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) state.camera.orbit(-0.3 * delta.x, 0.3 * delta.y);
-                if (glfwGetMouseButton(window.get(), GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state.camera.pan(-1e-3 * delta.x, 1e-3 * delta.y);
-                const float wheel = ImGui::GetIO().MouseWheel;
-                if (wheel != 0.0f) state.camera.zoom(std::pow(0.9, wheel));
-            }
-            lastMouse = mouse;
-            // Tab shows or hides the panel.
-            const bool tabDown = glfwGetKey(window.get(), GLFW_KEY_TAB) == GLFW_PRESS;
-            if (tabDown && !tabWasDown && !ImGui::GetIO().WantCaptureKeyboard) state.panel = !state.panel;
-            tabWasDown = tabDown;
-
-            int fbWidth, fbHeight;
-            glfwGetFramebufferSize(window.get(), &fbWidth, &fbHeight);
-            // The view fills the window beside the docked panel, or all of it.
-            const int panelWidth = state.panel ? std::min(kPanelWidth, fbWidth - 1) : 0;
-            const int viewWidth = fbWidth - panelWidth;
-            if (viewWidth <= 0 || fbHeight <= 0) continue;
-            if (!frame || viewWidth != frameWidth || fbHeight != frameHeight) {
-                frame = std::make_unique<OffscreenFrame>(viewWidth, fbHeight);
-                frameWidth = viewWidth;
-                frameHeight = fbHeight;
-                state.camera.resize(viewWidth, fbHeight);
-            }
-            if (state.lightsChanged) {
-                renderer.setLights(state.lights);
-                state.lightsChanged = false;
-                grids.invalidate();
-            }
-            if (state.placementsChanged) {
-                for (size_t i = 0; i < state.placements.size(); ++i) renderer.setPlacement(i, state.placements[i]);
-                bounds = placedBounds(loaded, state.placements);
-                state.placementsChanged = false;
-                grids.invalidate();  // solved for where the objects stood
-            }
-            grids.update(state, renderer);
-
-            const auto start = std::chrono::steady_clock::now();
-            frame->bindAndClear();
-            DrawOptions drawOptions;
-            drawOptions.surface = state.surface;
-            drawOptions.scattering = state.scattering;
-            drawOptions.extinctionScale = state.extinctionScale;
-            drawOptions.tracedLight = state.tracedLight;
-            renderer.draw(viewSetupFor(state.camera.camera(), bounds), drawOptions);
-            glFinish();
-            frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            frameTimes.push_back(frameMs);
-            if (std::isnan(state.exposureStops)) state.exposureStops = std::log2(autoExposure(frame->read()));
-            const float exposure = std::exp2(state.exposureStops);
-
-            std::vector<std::string> withPanel;
-            for (const auto& shot : state.screenshots) {
-                if (shot.withPanel) {
-                    withPanel.push_back(shot.file);
-                    continue;
-                }
-                writeImage(shot.file, frame->read(), exposure);
-                std::fprintf(stderr, "lucent: view: saved %s\n", shot.file.c_str());
-            }
-            state.screenshots.clear();
-
-            // Display: tone-mapped frame beside the panel, then the panel.
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
-            glViewport(0, 0, fbWidth, fbHeight);
-            glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-            glClear(GL_COLOR_BUFFER_BIT);
-            glViewport(panelWidth, 0, viewWidth, fbHeight);
-            glDisable(GL_DEPTH_TEST);
-            glDisable(GL_BLEND);
-            glUseProgram(tonemap.id());
-            glBindTextureUnit(0, frame->colourTexture());
-            glUniform1i(tonemap.uniform("radiance"), 0);
-            glUniform1f(tonemap.uniform("exposure"), exposure);
-            glUniform2i(tonemap.uniform("offset"), panelWidth, 0);
-            glBindVertexArray(emptyVao);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-
-            ImGui_ImplOpenGL3_NewFrame();
-            ImGui_ImplGlfw_NewFrame();
-            ImGui::NewFrame();
-            if (state.panel) {
-                ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
-                ImGui::SetNextWindowSize(ImVec2(float(panelWidth), float(fbHeight)), ImGuiCond_Always);
-                ImGui::Begin("Lucent (Tab hides)", nullptr,
-                             ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-                ImGui::PushItemWidth(-150.0f);  // room for the labels
-                ImGui::Text("method %s: %.1f ms per frame, %zu samples", method.name.c_str(), frameMs, renderer.sampleCount());
-                ImGui::Checkbox("surface", &state.surface);
-                ImGui::SameLine();
-                ImGui::Checkbox("scattering", &state.scattering);
-                ImGui::SameLine();
-                ImGui::Checkbox("traced light", &state.tracedLight);
-#ifdef LUCENT_HAVE_OPENCL
-                int multiple = int(state.multiple);
-                ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
-                state.multiple = ViewerState::Multiple(multiple);
-                if (!grids.status().empty()) ImGui::Text("%s", grids.status().c_str());
-#endif
-                ImGui::SliderFloat("medium scale", &state.extinctionScale, 0.1f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-                ImGui::SliderFloat("exposure (stops)", &state.exposureStops, -20.0f, 20.0f, "%+.1f");
-                if (ImGui::Button("save screenshot"))
-                    state.screenshots.push_back({"lucent-screenshot.png", screenshotPanel});
-                ImGui::SameLine();
-                ImGui::Checkbox("with the panel", &screenshotPanel);
-                ImGui::Separator();
-                objectsPanel(state, loaded);
-                ImGui::Separator();
-                lightsPanel(state);
-                ImGui::PopItemWidth();
-                ImGui::End();
-            }
-            ImGui::Render();
-            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-            for (const std::string& file : withPanel) {
-                saveWindow(file, fbWidth, fbHeight);
-                std::fprintf(stderr, "lucent: view: saved %s (with the panel)\n", file.c_str());
-            }
-            glfwSwapBuffers(window.get());
-        }
-        glDeleteVertexArrays(1, &emptyVao);
-        if (!loopTimes.empty()) {
-            auto median = [](std::vector<double> v) {
-                std::sort(v.begin(), v.end());
-                return v[v.size() / 2];
-            };
-            const double shown = median(loopTimes);
-            std::fprintf(stderr, "lucent: view: %zu frames at %dx%d: median %.1f ms to draw, %.1f ms per frame shown (%.1f fps)\n",
-                         loopTimes.size(), frameWidth, frameHeight, median(frameTimes), shown, 1e3 / shown);
-        }
-    }
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
+    Viewer(scene, options, std::move(script), loaded, method.name).run();
 }
 
 }  // namespace lucent

@@ -1,4 +1,4 @@
-#include "apps/run_program.h"
+#include "core/run_program.h"
 
 #include <fcntl.h>
 #include <spawn.h>

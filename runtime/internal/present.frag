@@ -1,8 +1,8 @@
 #version 450 core
-// The viewer's display pass: linear radiance times exposure, to sRGB.
+// OffscreenFrame::present: linear radiance times exposure, to sRGB, at an offset in the window.
 uniform sampler2D radiance;
 uniform float exposure;
-uniform ivec2 offset;  // of the view in the window (beside the panel)
+uniform ivec2 offset;  // of the frame in the window
 out vec4 colour;
 
 vec3 toSrgb(vec3 c) {

@@ -7,7 +7,7 @@
 // AddressSanitizer), so the large buffer is larger than that.
 #include <gtest/gtest.h>
 
-#include "apps/run_program.h"
+#include "core/run_program.h"
 #include "core/error.h"
 
 namespace lucent {
