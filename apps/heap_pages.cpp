@@ -10,7 +10,7 @@
 namespace lucent {
 
 // On the virtual machines Lucent is measured on, the first write to a page costs
-// 5-15 us (the guest's fault and the host's), and the bunny's 800x800 render
+// a fault in the guest and one in the host, and the bunny's 800x800 render
 // touched 53 000 pages: about half its time. glibc asks for huge pages only under
 // GLIBC_TUNABLES, read when the process starts, so here malloc is steered by hand:
 // - every block below 32 MB (the most mallopt allows) comes from the main heap,

@@ -75,8 +75,7 @@ struct MeshRaycaster::Tree {
     double mergeTolerance = 0.0;
     // The mesh, for the distance tree: its triangles in CGAL's form (72 bytes
     // each, five times the mesh) are made when the tree is, since a renderer that
-    // only casts rays never asks for it (the bunny's 75k faces, the first caster
-    // of a process: 90-92 -> 57-58 ms, with the vectors below reserved).
+    // only casts rays never asks for it (a third of the first caster's build).
     std::vector<Vec3> positions;
     std::vector<std::array<uint32_t, 3>> indices;
     std::vector<CgalTriangle> triangles;

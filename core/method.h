@@ -43,8 +43,8 @@ class Method {
 public:
     virtual ~Method() = default;
     // Starts what needs only the scene's description, so that it runs while the
-    // scene loads (ss: the OpenGL context, the frame and the compiled programs;
-    // about 20 ms of the bunny's 800x800 command, docs/runtime.md). render() takes it over when given the same
+    // scene loads (ss: the OpenGL context, the frame and the compiled programs).
+    // render() takes it over when given the same
     // description and settings; otherwise it is dropped. Optional for callers.
     virtual void prepare(const SceneDesc&, const MethodSettings&) {}
     // The scene as loadScene gives it, with sample sets when the method's entry

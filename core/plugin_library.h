@@ -1,7 +1,7 @@
 #pragma once
 // Code whose libraries are slow to load lives in plug-in libraries that Lucent
-// opens on first use. OpenVDB alone binds 57 000 symbols when a program starts:
-// 50 ms of every command, most of which never reads or writes a grid
+// opens on first use. OpenVDB alone binds 57 000 symbols when a program starts,
+// a cost every command paid though most never read or write a grid
 // (docs/architecture.md). A plug-in sits beside the Lucent library that uses it
 // and gives that library a table of functions through one entry point.
 #include <string>

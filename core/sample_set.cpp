@@ -41,8 +41,8 @@ public:
 };
 
 // Reads the file's fields in order, each straight into its own storage, and
-// hashes them on the way: read into one buffer first and copied out again, the
-// bunny's 35 MB took 64-71 ms instead of 27-32. size is the whole file's, checked
+// hashes them on the way: one buffer copied out again touched every byte twice
+// and took twice as long. size is the whole file's, checked
 // against the counts before anything they claim is allocated.
 class Reader {
 public:

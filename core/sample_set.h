@@ -78,14 +78,13 @@ struct SampleSet {
     // The object's closed mesh in its own space as the preprocessor loaded it
     // (checked, zero-area faces dropped, faces outward), or empty. A render whose
     // object still has the fingerprint takes it from here instead of parsing the
-    // mesh file again (core/loaded_scene.h): the bunny's OFF file took 130 ms.
+    // mesh file again (core/loaded_scene.h), which took longer than the samples.
     TriangleMesh mesh;
 
     // A set read from a file leaves sh empty and reads the coefficients from the
     // file the first time they are asked for, from any thread: ss with traced
-    // light never asks (they are 30 MB of the bunny's 35 MB file, and copying
-    // them cost 0.1 s of the 800x800 command's processor time; docs/runtime.md,
-    // "The whole command, and page faults"). They were checked when the file
+    // light never asks (they are most of a sample file's bytes, and copying
+    // them was a tenth of the command's processor time). They were checked when the file
     // was read; a file that no longer holds the same bytes, or is gone, throws
     // Error("FILE: ..."). Filling sh replaces them.
     std::shared_ptr<const CoefficientsInFile> coefficientsInFile;

@@ -13,8 +13,8 @@ namespace lucent {
 namespace {
 
 // libOSMesa links LLVM, and a program linked to it loads and relocates LLVM
-// before main: 80-90 ms of every command on this project's machines (`lucent
-// --version` 113-141 -> 30-41 ms), most of which never draw with OSMesa. So it
+// before main, in every command, most of which never draw with OSMesa (it was
+// most of `lucent --version`'s time; docs/architecture.md). So it
 // is opened here, on first use. 8 is the ABI's major version since Mesa 10.
 constexpr const char* kLibrary = "libOSMesa.so.8";
 

@@ -97,7 +97,7 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
             const Light& l = scene.desc.lights[j];
             if (l.type != Light::Type::Point) continue;
             // Farther from the box than a spacing: neither case (and no distance
-            // tree to build, 0.05-0.1 s on the bunny).
+            // tree to build, which costs more than the check).
             const Bounds3 box = o.mesh().bounds();
             if (glm::length(glm::max(glm::max(box.min - l.position, l.position - box.max), Vec3(0.0))) > spacing)
                 continue;
@@ -149,8 +149,8 @@ Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings)
         if (prepared->key == sessionKey(scene.desc, settings)) session = prepared->session.get();
     }
     Image image = renderSingleScattering(scene, settings, {}, backend_, session);
-    // Torn down in a thread of its own while the caller writes the image (the
-    // bunny's 800x800 session: 15 ms); the destructor waits for it.
+    // Torn down in a thread of its own while the caller writes the image; the
+    // destructor waits for it.
     session->context->release();
     retiring_ = std::make_unique<Retiring>(
         Retiring{std::async(std::launch::async, [retired = std::move(session)]() mutable { retired.reset(); })});
@@ -169,8 +169,8 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
                              const std::vector<ScatteringGrid>& grids, std::string& backend,
                              std::unique_ptr<GlSession>& session) {
     if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "single scattering needs the objects' sample sets");
-    // The traced light casts rays into every object: their ray casters (41 ms for
-    // the bunny's 75k faces) are built while the OpenGL context comes up and the
+    // The traced light casts rays into every object: their ray casters (a BVH
+    // over every face) are built while the OpenGL context comes up and the
     // samples are uploaded. The future's destructor waits for it on every path.
     std::future<void> casters;
     if (settings.tracedLight)
@@ -180,7 +180,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     // The SH light reads the samples' coefficients, which stay in the sample file
     // until asked for (core/sample_set.h): read here, while the context comes up
     // and the passes before the samples' run, rather than where the upload asks
-    // for them (--light sh at 800x800: 0.74 -> 0.705 s median of 8). An error is
+    // for them and the frame would wait. An error is
     // met again there, and thrown.
     std::future<void> coefficients;
     if (!settings.tracedLight)

@@ -11,8 +11,8 @@ public:
     SsMethod();
     ~SsMethod() override;
     // The OpenGL context, the frame and the renderer with its programs, made in
-    // a thread of their own while the scene loads (about 20 ms off the bunny's
-    // 800x800 command, docs/runtime.md); render() makes the context current in its thread.
+    // a thread of their own while the scene loads; render() makes the context
+    // current in its thread.
     void prepare(const SceneDesc& desc, const MethodSettings& settings) override;
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"

@@ -8,8 +8,8 @@
 // the new depth if larger, goes on to the next slot (exact in any order of
 // arrival). A depth the first slot already holds is a coincident face: kept
 // once, as depth peeling keeps it (peel.frag's strict test). On llvmpipe each
-// mesh pass costs its vertex work on the application's thread (12-18 ms for the
-// bunny at 200x200), whatever few fragments it has.
+// mesh pass costs its vertex work on the application's thread, whatever few
+// fragments it has.
 #include "gpu_layout.h"
 
 layout(r32ui, binding = 0) uniform coherent uimage2DArray layers;  // fronts, backs, farthest back

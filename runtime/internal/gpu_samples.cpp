@@ -47,7 +47,7 @@ void GpuSamples::uploadCoefficients() {
                          sh.empty() ? nullptr : sh.data(), 0);
     // The coefficients are read through a texture buffer: llvmpipe gathers texel
     // fetches with vector instructions where it loads storage buffers lane by lane
-    // (the received light of 39 568 samples: 127 -> 55-64 ms), and its largest
+    // (the received light's pass took half the time), and its largest
     // texture buffer holds 4x what one storage block may (512 against 128 MB).
     glCreateTextures(GL_TEXTURE_BUFFER, 1, &coefficientTexture_);
     glTextureBuffer(coefficientTexture_, GL_R32F, buffers_[1]);
@@ -80,13 +80,11 @@ void GpuSamples::draw() const {
     glBindVertexArray(vao_);
     // In batches, each flushed: llvmpipe rasterizes what it has binned only at a
     // flush, so one draw of every proxy kept its raster threads idle while the
-    // application thread ran the proxies' vertex work (about 50 ms of the bunny's
-    // frame). Flushed in four, the raster threads shade a batch while the next is
-    // transformed: the bunny's proxies 215-247 -> 186-189 ms (docs/runtime.md).
-    // Sixteen rather than four: llvmpipe's binned data and vertex buffers are
-    // per batch and reused by the next, 11 MB less memory to touch for the first
-    // time (the 800x800 command: 0.635-0.65 -> 0.60-0.625 s median, frames and
-    // image unchanged; 32 gained nothing more). The blending adds, so the order
+    // application thread ran the proxies' vertex work. Flushed in batches, the
+    // raster threads shade a batch while the next is transformed
+    // (docs/runtime.md, Speed). Sixteen rather than four: llvmpipe's binned data
+    // and vertex buffers are per batch and reused by the next, so less memory is
+    // touched for the first time (32 gained nothing more). The blending adds, so the order
     // of the batches does not matter.
     constexpr size_t kBatches = 16, kSmallestBatch = 2048;
     const size_t batch = std::max((count_ + kBatches - 1) / kBatches, kSmallestBatch);

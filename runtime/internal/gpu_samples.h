@@ -29,7 +29,7 @@ public:
     // them, the SH coefficients (gpu_layout.h). These are uploaded on the first
     // bind that asks for them, from the sample set given to the constructor,
     // which must outlive this: with the traced light in a medium of constant
-    // density no program reads them, and the bunny's 31 MB cost 10-15 ms to upload.
+    // density no program reads them, and they are most of the samples' bytes.
     void bind(bool coefficients);
     // One point per sample (buffers bound).
     void draw() const;

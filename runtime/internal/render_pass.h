@@ -35,8 +35,8 @@ struct GpuObject {
     const TriangleMesh* boundaryMesh = nullptr;  // the caller's (TranslucentObject::mesh), object space
     Bounds3 bounds;                              // of boundaryMesh
     // Is the camera inside? Built the first time the camera stands inside the
-    // bounds: a ray caster is 37 ms on the bunny's 75k faces, wasted on the
-    // usual camera outside (containsPoint, frame_targets.cpp).
+    // bounds: a ray caster (a BVH over every face) is wasted on the usual camera
+    // outside (containsPoint, frame_targets.cpp).
     std::unique_ptr<MeshRaycaster> boundary;
     std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
     bool shadowsValid = false;

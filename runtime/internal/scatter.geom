@@ -139,8 +139,8 @@ void proxy(vec3 gaussian, vec3 c, float r) {
     // The cone from the eye tangent to the sphere cuts the plane through c normal to
     // c in a circle of radius r d / sqrt(d^2 - r^2); the square holds that circle.
     // (An octagon, 95% of whose area is the circle's against the square's 79%,
-    // took the viewer's frame from 212 to 261 ms, and one triangle, 60%, to 217:
-    // llvmpipe shades 4x2 blocks whole and pays per triangle, docs/runtime.md.)
+    // made the frame slower, and so did one triangle: llvmpipe shades 4x2 blocks
+    // whole and pays per triangle.)
     vec3 axis = c / d;
 #ifdef POINT_PROXIES
     vec2 x = projectedExtent(c, r, 0), y = projectedExtent(c, r, 1);

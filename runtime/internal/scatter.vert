@@ -26,7 +26,7 @@ uniform mat4 view;
 // isotropic phase function the received light does not depend on the view:
 // received.comp computes it when lights change, and frames reuse it. A variant,
 // not a uniform: llvmpipe evaluated receivedLight for every sample and frame
-// behind the uniform's select (8-10 ms of the bunny's frame).
+// behind the uniform's select.
 layout(std430, binding = kBindingReceived) readonly buffer ReceivedCache { Received cachedReceived[]; };
 uniform bool lightVaries;  // false for the published scheme: v_i constant under the Gaussian
 // VIEW_FROM_FRONT (a program variant, SamplePass::scatterProgram): the light varies
