@@ -12,6 +12,7 @@ in vec3 worldNormal;
 
 #include "gpu_layout.h"
 #include "lights.glsl"
+#include "phase.glsl"
 
 uniform int lightCount;
 uniform vec3 cameraPosition;
@@ -20,13 +21,6 @@ uniform float g;               // Henyey-Greenstein mean cosine
 uniform sampler2D frontDepth;  // nearest front face of the translucent meshes
 
 out vec4 colour;
-
-const float PI = 3.14159265358979;
-
-float henyeyGreenstein(float cosTheta) {
-    float denom = max(1.0 + g * g - 2.0 * g * cosTheta, 1e-6);
-    return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
-}
 
 void main() {
     // Only the nearest front face is visible; concave meshes draw several per pixel.
@@ -49,7 +43,7 @@ void main() {
         }
         float cosL = dot(n, toLight);
         if (cosL <= 0.0) continue;
-        sum += henyeyGreenstein(dot(-toLight, toEye)) * lights[j].power.rgb * falloff * cosL / (cosL + cosV);
+        sum += henyeyGreenstein(g, dot(-toLight, toEye)) * lights[j].power.rgb * falloff * cosL / (cosL + cosV);
     }
     colour = vec4(albedo * sum, 0.0);
 }

@@ -3,6 +3,7 @@
 #include "gpu_layout.h"
 layout(std430, binding = kBindingSamples) readonly buffer Samples { Sample samples[]; };
 #include "lights.glsl"
+#include "phase.glsl"
 // The SH coefficients, [sample][channel][coefficient], one float per texel (gpu_samples.h).
 uniform samplerBuffer coefficients;
 float shAt(int k) { return texelFetch(coefficients, k).r; }
@@ -26,8 +27,6 @@ vec3 sampleCentre(int i) { return placed(samples[i].centreWidth.xyz); }
 float sampleWidth(int i) { return modelScale * samples[i].centreWidth.w; }
 vec3 toObject(vec3 worldDirection) { return worldDirection * modelRotation; }  // the transpose's product
 float attenuationExponent() { return extinctionScale * modelScale; }
-
-const float PI = 3.14159265358979;
 
 // Blocker shadows (runtime/internal/blocker_shadows.h), for samples whose psi leaves the
 // blockers out: per light j, layers 6j..6j+5 hold the distance along its rays to
@@ -154,11 +153,6 @@ vec3 attenuation(int sampleIndex, vec3 worldDirection) {
     return k == 1.0 ? psi : pow(psi, vec3(k));
 }
 
-float henyeyGreenstein(float cosTheta) {
-    float denom = max(1.0 + g * g - 2.0 * g * cosTheta, 1e-6);
-    return (1.0 - g * g) / (4.0 * PI * denom * sqrt(denom));
-}
-
 // Minus the gradient of the path length to the boundary along w, the direction
 // in which the optical depth towards that light falls fastest, per unit sigma_t.
 // Out of the boundary ball, through the point e where w leaves it, it is
@@ -219,7 +213,7 @@ Received receivedLight(int i, vec3 toCamera) {
         vec3 psi = attenuation(i, toLight);
 #endif
         // Phase between the light's propagation (-toLight) and the view's (toCamera).
-        vec3 light = henyeyGreenstein(dot(-toLight, toCamera)) * irradiance * psi;
+        vec3 light = henyeyGreenstein(g, dot(-toLight, toCamera)) * irradiance * psi;
         float share = light.r + light.g + light.b;
         received += light;
         toward += share * pathGradient(i, toLight, psi.r);

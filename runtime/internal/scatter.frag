@@ -4,6 +4,7 @@
 // centre (of the first two, segment.frag: the air between two parts of a
 // concave object holds nothing and dims nothing), stopped by the host's opaque
 // geometry and the object's blockers, and clipped to the sample's density slab.
+#include "phase.glsl"
 in GeometryOut {
     flat vec3 viewCentre;    // of this Gaussian: the sample's or its mirror image's
     flat vec3 anchorOffset;  // that centre minus the sample's, where the light is known
@@ -23,8 +24,8 @@ uniform vec4 pixelToView;       // view-space ray through a pixel: (x sx + ox, y
 uniform vec3 objectCamera;
 uniform mat3 viewToObject;
 // Program variants (SamplePass::scatterProgram), as llvmpipe runs the body of an
-// if on a uniform whether it is taken or not (each of the two below cost the
-// bunny's 800x800 frame 20-40 ms untaken):
+// if on a uniform whether it is taken or not (each of the two below cost a
+// tenth of the frame untaken; docs/runtime.md, Speed):
 // - SAMPLE_REGIONS: the samples belong to regions along an axis (density slabs,
 //   preprocess/sample_weights.h), and each Gaussian is clipped to its own;
 // - VIEW_FROM_FRONT: attenuate from this pixel's front face (scatter.vert),
@@ -73,7 +74,7 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
     float ee = holds ? min(e, 80.0) : e;
     float ea = erfcScaled(abs(a)) * exp(ee - a * a), eb = erfcScaled(abs(b)) * exp(ee - b * b);
     float value = a >= 0.0 ? ea - eb : (b <= 0.0 ? eb - ea : 2.0 * exp(ee) - ea - eb);
-    return s * sqrt(0.5 * 3.14159265358979) * max(value, 0.0);
+    return s * sqrt(0.5 * PI) * max(value, 0.0);
 }
 
 // The sample's light along this pixel's ray x = t dir, on the Gaussian centred at
@@ -182,7 +183,7 @@ void main() {
     // s sqrt(2 pi) at unit amplitude.
     float largest = 0.0;
     for (int k = 0; k < 3; ++k) largest = max(largest, gaussianSegment(shifted[k], f.width, 0.0, dir, t0, t1));
-    if (largest < discardBelow * f.width * sqrt(2.0 * 3.14159265358979)) discard;
+    if (largest < discardBelow * f.width * sqrt(2.0 * PI)) discard;
 #endif
     colour = vec4(f.radiance * integral, 1.0);
 }

@@ -6,6 +6,7 @@ in vec3 worldNormal;
 
 #include "gpu_layout.h"
 #include "lights.glsl"
+#include "phase.glsl"
 
 uniform int lightCount;
 uniform vec3 cameraPosition;
@@ -15,8 +16,6 @@ uniform float shininess;
 uniform sampler2D frontDepth;  // nearest front face of the translucent meshes
 
 out vec4 colour;
-
-const float PI = 3.14159265358979;
 
 void main() {
     // Only the nearest front face is visible; concave meshes draw several per pixel.
