@@ -9,6 +9,7 @@
 #include <array>
 #include <vector>
 
+#include "core/grid_index.h"
 #include "core/math.h"
 
 namespace lucent {
@@ -23,7 +24,8 @@ struct ScatteringGrid {
     // index-matched. View rays then bend along the eikonal equation (thesis 4.3).
     std::vector<float> refraction;
 
-    size_t voxelCount() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+    size_t voxelCount() const { return index().count(); }
+    GridIndex index() const { return {dims}; }
 };
 
 }  // namespace lucent

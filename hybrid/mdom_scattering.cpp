@@ -1,10 +1,10 @@
 #include "hybrid/mdom_scattering.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "core/error.h"
 #include "core/spherical_harmonics.h"
+#include "core/stopwatch.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/internal/dom_solver.h"
 #include "hybrid/ordinates.h"
@@ -23,7 +23,7 @@ std::string MdomScattering::deviceName() const { return impl_->device.name(); }
 
 size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, int bands) {
     // The solver's buffers, and the direct pass's: two extinctions, two results, the blockers.
-    const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
+    const size_t voxels = GridIndex{dims}.count();
     return DomSolver::bytesFor(dims, directions, bands) + voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
 }
 
@@ -31,7 +31,8 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     ScatteringGrid g;
     g.bounds = bounds;
     g.dims = dims;
-    const size_t voxels = size_t(dims[0]) * dims[1] * dims[2];
+    const GridIndex index{dims};
+    const size_t voxels = index.count();
     const int m = bands * bands;
     g.source.assign(3 * voxels, 0.0f);
     g.extinction.resize(3 * voxels);
@@ -41,7 +42,7 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     for (int k = 0; k < dims[2]; ++k)
         for (int j = 0; j < dims[1]; ++j)
             for (int i = 0; i < dims[0]; ++i) {
-                const size_t v = i + size_t(dims[0]) * (j + size_t(dims[1]) * k);
+                const size_t v = index(i, j, k);
                 for (int c = 0; c < 3; ++c) g.extinction[3 * v + c] = extinction[v][c];
                 if (scattering[v] == glm::vec4(0.0f)) continue;
                 const Vec3 toEye = eye - (bounds.min + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5));
@@ -85,7 +86,7 @@ const MdomStats& MdomProgress::stats() const { return impl_->stats; }
 bool MdomProgress::iterate() {
     Impl& p = *impl_;
     if (p.stats.converged || p.stats.iterations >= p.settings.maxIterations) return false;
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     try {
         p.solver->step(p.device.marchQueue, p.settings.tolerance);
     } catch (const cl::Error& e) {
@@ -95,7 +96,7 @@ bool MdomProgress::iterate() {
     p.stats.iterations = run.iterations;
     p.stats.converged = run.converged;
     p.stats.ratio = run.ratio;
-    p.stats.sweepSeconds += secondsSince(t0);
+    p.stats.sweepSeconds += stopwatch.seconds();
     return !p.stats.converged && p.stats.iterations < p.settings.maxIterations;
 }
 
@@ -121,12 +122,123 @@ MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector
     return progress->solution();
 }
 
+namespace {
+
+// The medium as the sweeps see it, delta-M scaled (thesis 5.3.2):
+// sigma_t* = sigma_t - f sigma_s, sigma_s* = (1 - f) sigma_s; beside it the true
+// extinction the view and the forward peak need, and the blockers' voxels.
+struct MdomMaterials {
+    DomGrid grid;
+    std::vector<glm::vec4> trueExtinction;
+    std::vector<cl_int> opaque;
+};
+
+MdomMaterials materialsOf(const Voxelisation& vox, const MediumDesc& medium, const DeltaM& dm) {
+    const GridShape& shape = vox.shape;
+    const size_t voxels = shape.count();
+    MdomMaterials out;
+    DomGrid& grid = out.grid;
+    grid.dims = shape.dims;
+    grid.edges = Vec3(shape.voxel);
+    grid.extinction.assign(voxels, glm::vec4(0.0f));
+    grid.scattering.assign(voxels, glm::vec4(0.0f));
+    grid.phase.assign(voxels, glm::vec4(float(medium.g), 0.0f, 0.0f, 0.0f));
+    out.trueExtinction.assign(voxels, glm::vec4(0.0f));
+    out.opaque.assign(voxels, 0);
+    for (size_t v = 0; v < voxels; ++v) {
+        const glm::vec4& m = vox.material[v];
+        if (m.a == kOpaque) {
+            // A blocker absorbs what reaches it: optically thick, not scattering.
+            out.opaque[v] = 1;
+            grid.extinction[v] = glm::vec4(glm::vec3(float(1e4 / shape.voxel)), 0.0f);
+            continue;
+        }
+        if (!(m.a > 0.0f)) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double sigmaS = medium.albedo[c] * m[c];
+            grid.extinction[v][c] = float(m[c] - dm.f * sigmaS);
+            grid.scattering[v][c] = float((1.0 - dm.f) * sigmaS);
+            out.trueExtinction[v][c] = m[c];
+        }
+        grid.extinction[v].a = grid.scattering[v] != glm::vec4(0.0f) ? 1.0f : 0.0f;  // only scattering voxels
+    }
+    return out;
+}
+
+// The direct component, light by light (thesis 5.3.1): each light's uncollided
+// irradiance through the scaled and the true medium (dom_direct.cl), giving the
+// first source Q_lm = sigma_s* g*_l E* Y_lm(omega_light) and the forward peak
+// (E* - E), which the sweeps cannot carry and the view adds back.
+struct DirectComponent {
+    std::vector<glm::vec4> source;  // [voxel][moment]
+    std::vector<MdomSolution::Peak> peaks;
+};
+
+DirectComponent directComponent(ClDevice& device, const cl::Program& program, const GridShape& shape,
+                                const MdomMaterials& materials, const std::vector<Light>& lights, const DeltaM& dm,
+                                int bands) {
+    const size_t voxels = shape.count();
+    const int moments = bands * bands;
+    cl::CommandQueue& queue = device.marchQueue;
+    const cl::Context& cx = device.context;
+    DirectComponent out{std::vector<glm::vec4>(voxels * moments, glm::vec4(0.0f)), {}};
+    // CL_MEM_COPY_HOST_PTR copies from the host pointer and never writes it.
+    cl::Buffer scaledBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
+                         const_cast<glm::vec4*>(materials.grid.extinction.data()));
+    cl::Buffer trueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
+                       const_cast<glm::vec4*>(materials.trueExtinction.data()));
+    cl::Buffer opaqueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(cl_int),
+                         const_cast<cl_int*>(materials.opaque.data()));
+    cl::Buffer scaledOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
+    cl::Buffer trueOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
+    cl::Kernel k(program, "dom_uncollided");
+    k.setArg(0, scaledBuf);
+    k.setArg(1, trueBuf);
+    k.setArg(2, opaqueBuf);
+    k.setArg(3, scaledOut);
+    k.setArg(4, trueOut);
+    k.setArg(7, float4Of(shape.origin, 0.0));
+    k.setArg(8, float(shape.voxel));
+    k.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
+    std::vector<glm::vec4> eScaled(voxels), eTrue(voxels);
+    std::vector<double> y(moments);
+    const std::vector<glm::vec4>& scattering = materials.grid.scattering;
+    for (const Light& light : lights) {
+        const bool point = light.type == Light::Type::Point;
+        k.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
+        k.setArg(6, float4Of(light.power, 0.0));
+        queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(voxels));
+        queue.enqueueReadBuffer(scaledOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eScaled.data());
+        queue.enqueueReadBuffer(trueOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eTrue.data());
+        MdomSolution::Peak peak{light, std::vector<glm::vec4>(voxels)};
+        for (size_t v = 0; v < voxels; ++v) peak.excess[v] = glm::max(eScaled[v] - eTrue[v], glm::vec4(0.0f));
+        out.peaks.push_back(std::move(peak));
+        for (int kz = 0; kz < shape.dims[2]; ++kz)
+            for (int ky = 0; ky < shape.dims[1]; ++ky)
+                for (int kx = 0; kx < shape.dims[0]; ++kx) {
+                    const size_t v = shape.index()(kx, ky, kz);
+                    if (eScaled[v] == glm::vec4(0.0f) && eTrue[v] == glm::vec4(0.0f)) continue;
+                    const Vec3 centre = shape.centre(kx, ky, kz);
+                    Vec3 w = point ? centre - light.position : light.direction;
+                    if (glm::length(w) <= 0.0) continue;
+                    evaluateSh(bands, glm::normalize(w), y);
+                    for (int m = 0; m < moments; ++m) {
+                        const int l = int(std::sqrt(double(m)));
+                        out.source[v * moments + m] += scattering[v] * eScaled[v] * float(dm.moments[l] * y[m]);
+                    }
+                }
+    }
+    return out;
+}
+
+}  // namespace
+
 std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, const std::vector<Light>& lights,
                                                     const MdomSettings& s) {
     MdomStats stats;
     ClDevice& device = impl_->device;
     stats.device = device.name();
-    auto t0 = std::chrono::steady_clock::now();
+    Stopwatch stopwatch;
     const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
     const std::string what = shape.describe(object.desc().name);
     const size_t voxels = shape.count();
@@ -137,105 +249,29 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     device.checkMemory(bytesFor(shape.dims, s.directions, s.bands), DomSolver::largestBufferFor(voxels, s.bands), what,
                        voxels * size_t(2 * moments + 4) * sizeof(glm::vec4));
     const Voxelisation vox = voxelise(object, s.resolution);
-    stats.voxeliseSeconds = secondsSince(t0);
-    t0 = std::chrono::steady_clock::now();
+    stats.voxeliseSeconds = stopwatch.seconds();
+    stopwatch.restart();
 
-    // The scaled medium (delta-M): sigma_t* = sigma_t - f sigma_s, sigma_s* = (1 - f) sigma_s.
     const MediumDesc& medium = object.desc().medium;
     const DeltaM dm = deltaM(medium.g, s.bands);
-    DomGrid grid;
-    grid.dims = shape.dims;
-    grid.edges = Vec3(shape.voxel);
-    grid.extinction.assign(voxels, glm::vec4(0.0f));
-    grid.scattering.assign(voxels, glm::vec4(0.0f));
-    grid.phase.assign(voxels, glm::vec4(float(medium.g), 0.0f, 0.0f, 0.0f));
-    std::vector<glm::vec4> trueExtinction(voxels, glm::vec4(0.0f));
-    std::vector<cl_int> opaque(voxels, 0);
-    for (size_t v = 0; v < voxels; ++v) {
-        const glm::vec4& m = vox.material[v];
-        if (m.a == kOpaque) {
-            // A blocker absorbs what reaches it: optically thick, not scattering.
-            opaque[v] = 1;
-            grid.extinction[v] = glm::vec4(glm::vec3(float(1e4 / shape.voxel)), 0.0f);
-            continue;
-        }
-        if (!(m.a > 0.0f)) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double sigmaS = medium.albedo[c] * m[c];
-            grid.extinction[v][c] = float(m[c] - dm.f * sigmaS);
-            grid.scattering[v][c] = float((1.0 - dm.f) * sigmaS);
-            trueExtinction[v][c] = m[c];
-        }
-        grid.extinction[v].a = grid.scattering[v] != glm::vec4(0.0f) ? 1.0f : 0.0f;  // only scattering voxels
-    }
-
+    MdomMaterials materials = materialsOf(vox, medium, dm);
     try {
-        cl::CommandQueue& queue = device.marchQueue;
-        const cl::Context& cx = device.context;
-        // The direct component, light by light: the first source
-        // Q_lm = sigma_s* g*_l E* Y_lm(omega_light) and the forward peak (E* - E) Y_lm.
-        std::vector<glm::vec4> source(voxels * moments, glm::vec4(0.0f));
-        std::vector<MdomSolution::Peak> peaks;
-        {
-            cl::Buffer scaledBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
-                                 grid.extinction.data());
-            cl::Buffer trueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
-                               trueExtinction.data());
-            cl::Buffer opaqueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(cl_int), opaque.data());
-            cl::Buffer scaledOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
-            cl::Buffer trueOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
-            cl::Kernel k(impl_->direct, "dom_uncollided");
-            k.setArg(0, scaledBuf);
-            k.setArg(1, trueBuf);
-            k.setArg(2, opaqueBuf);
-            k.setArg(3, scaledOut);
-            k.setArg(4, trueOut);
-            k.setArg(7, float4Of(shape.origin, 0.0));
-            k.setArg(8, float(shape.voxel));
-            k.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
-            std::vector<glm::vec4> eScaled(voxels), eTrue(voxels);
-            std::vector<double> y(moments);
-            for (const Light& light : lights) {
-                const bool point = light.type == Light::Type::Point;
-                k.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
-                k.setArg(6, float4Of(light.power, 0.0));
-                queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(voxels));
-                queue.enqueueReadBuffer(scaledOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eScaled.data());
-                queue.enqueueReadBuffer(trueOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eTrue.data());
-                MdomSolution::Peak peak{light, std::vector<glm::vec4>(voxels)};
-                for (size_t v = 0; v < voxels; ++v) peak.excess[v] = glm::max(eScaled[v] - eTrue[v], glm::vec4(0.0f));
-                peaks.push_back(std::move(peak));
-                for (int kz = 0; kz < shape.dims[2]; ++kz)
-                    for (int ky = 0; ky < shape.dims[1]; ++ky)
-                        for (int kx = 0; kx < shape.dims[0]; ++kx) {
-                            const size_t v = kx + size_t(shape.dims[0]) * (ky + size_t(shape.dims[1]) * kz);
-                            if (eScaled[v] == glm::vec4(0.0f) && eTrue[v] == glm::vec4(0.0f)) continue;
-                            const Vec3 centre = shape.origin + shape.voxel * Vec3(kx + 0.5, ky + 0.5, kz + 0.5);
-                            Vec3 w = point ? centre - light.position : light.direction;
-                            if (glm::length(w) <= 0.0) continue;
-                            evaluateSh(s.bands, glm::normalize(w), y);
-                            for (int m = 0; m < moments; ++m) {
-                                const int l = int(std::sqrt(double(m)));
-                                source[v * moments + m] += grid.scattering[v] * eScaled[v] * float(dm.moments[l] * y[m]);
-                            }
-                        }
-            }
-        }
-        stats.directSeconds = secondsSince(t0);
+        DirectComponent direct = directComponent(device, impl_->direct, shape, materials, lights, dm, s.bands);
+        stats.directSeconds = stopwatch.seconds();
         auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
         MdomSolution& solution = progress->solution;
         solution.bounds = shape.bounds();
         solution.dims = shape.dims;
         solution.bands = s.bands;
         solution.g = medium.g;
-        solution.extinction = std::move(trueExtinction);
+        solution.extinction = std::move(materials.trueExtinction);
         solution.scattering.resize(voxels);
         for (size_t v = 0; v < voxels; ++v)
-            solution.scattering[v] = opaque[v] ? glm::vec4(0.0f)
-                                               : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
-        solution.peaks = std::move(peaks);
-        progress->solver = std::make_unique<DomSolver>(device, grid, s.directions, s.bands, BoundaryFlags{});
-        progress->solver->setSource(queue, source);
+            solution.scattering[v] = materials.opaque[v] ? glm::vec4(0.0f)
+                                                         : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
+        solution.peaks = std::move(direct.peaks);
+        progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{});
+        progress->solver->setSource(device.marchQueue, direct.source);
         return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));
     } catch (const cl::Error& e) {
         throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +

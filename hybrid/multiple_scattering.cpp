@@ -1,9 +1,9 @@
 #include "hybrid/multiple_scattering.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/internal/lattice.h"
 #include "hybrid/internal/photon_marcher.h"
@@ -34,7 +34,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
     HybridStats stats;
     ClDevice& device = impl_->device;
     stats.device = device.name();
-    auto t0 = std::chrono::steady_clock::now();
+    Stopwatch stopwatch;
     const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
     const std::string what = shape.describe(object.desc().name);
     const size_t voxels = shape.count();
@@ -42,8 +42,8 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
     device.checkMemory(voxels * (2 * 16 + 2 * 24) + Lattice::bytesFor(voxels, s.blocked),
                        Lattice::largestBufferFor(voxels), what);
     const Voxelisation grid = voxelise(object, s.resolution);
-    stats.voxeliseSeconds = secondsSince(t0);
-    t0 = std::chrono::steady_clock::now();
+    stats.voxeliseSeconds = stopwatch.seconds();
+    stopwatch.restart();
 
     const Rgb albedo = object.desc().medium.albedo;
     const int raysPerLight = s.raysPerLight > 0 ? s.raysPerLight : 4 * s.resolution * s.resolution;
@@ -75,14 +75,14 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
         for (int i = 0;; ++i) {
             const bool marching = raysLeft && marched < maxMarchSteps;
             if (marching) {
-                const auto marchStart = std::chrono::steady_clock::now();
+                const Stopwatch march;
                 marcher.enqueueMarch(mq, s.marchSteps, i % 2);
                 marchedInto[i % 2] = true;
                 marched += s.marchSteps;
                 ++stats.marchLaunches;
                 if (!s.concurrent) {
                     mq.finish();
-                    stats.marchSeconds += secondsSince(marchStart);
+                    stats.marchSeconds += march.seconds();
                 }
             }
             if (i > 0) {
@@ -133,7 +133,7 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
         stats.latticeInFlight = lt.inFlight;
         stats.injected = lt.absorbed + lt.escaped + lt.inFlight;
         ScatteringGrid out = lattice.finish(lq);
-        stats.solveSeconds = secondsSince(t0);
+        stats.solveSeconds = stopwatch.seconds();
         if (statsOut) *statsOut = stats;
         return out;
     } catch (const cl::Error& e) {

@@ -1,10 +1,10 @@
 #include "hybrid/transport.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "hybrid/internal/dom_solver.h"
 #include "hybrid/internal/uncollided_flux.h"
 #include "hybrid/ordinates.h"
@@ -13,8 +13,8 @@ namespace lucent::hybrid {
 
 namespace {
 
-// The far field's traversal steps integrated in about 10 s on this project's
-// 2-core machine (docs/transport.md: 9e9 took 38 s).
+// The far field's traversal steps: a budget that keeps the far field to seconds
+// on a 2-core machine (docs/transport.md).
 constexpr double kMarchBudget = 2.5e9;
 // Cells longer than this many times the shortest would need too many near kernels.
 constexpr double kMostAspect = 4.0;
@@ -40,7 +40,7 @@ std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid, size_t
 }  // namespace
 
 TransportResult solveTransport(const TransportProblem& p) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     ClDevice device;
     DomGrid grid;
     grid.dims = p.cells;
@@ -106,7 +106,7 @@ TransportResult solveTransport(const TransportProblem& p) {
             const size_t v = c[0] + size_t(p.cells[0]) * (c[1] + size_t(p.cells[1]) * c[2]);
             r.flux.push_back(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));  // phi = sqrt(4 pi) phi_00
         }
-        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        r.seconds = stopwatch.seconds();
         return r;
     } catch (const cl::Error& e) {
         throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/grid_index.h"
 #include "core/math.h"
 #include "core/volume_object.h"
 
@@ -22,7 +23,10 @@ struct GridShape {
     double voxel = 1;  // edge length
     std::array<int, 3> dims{0, 0, 0};
 
-    size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+    size_t count() const { return index().count(); }
+    GridIndex index() const { return {dims}; }
+    // The centre of voxel (i, j, k), world units.
+    Vec3 centre(int i, int j, int k) const { return origin + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5); }
     Bounds3 bounds() const {
         return {origin, origin + voxel * Vec3(dims[0], dims[1], dims[2])};
     }

@@ -8,7 +8,6 @@
 #include <CL/opencl.hpp>
 #include <glm/glm.hpp>
 
-#include <chrono>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,11 +53,6 @@ public:
 // A host vector as an OpenCL float4 (rgb or xyz, and w).
 inline cl_float4 float4Of(const glm::dvec3& v, double w = 0.0) {
     return {{float(v.x), float(v.y), float(v.z), float(w)}};
-}
-
-// Seconds elapsed since `since`, for the solvers' timings.
-inline double secondsSince(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
 // A read-write buffer of `bytes` zeros (at least 16: OpenCL refuses empty buffers).

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/grid_index.h"
 #include "core/math.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/ordinates.h"
@@ -24,7 +25,8 @@ struct DomGrid {
                                         // (a voxel with a = 0 must have no source)
     std::vector<glm::vec4> scattering;  // sigma_s*, rgb
     std::vector<glm::vec4> phase;       // x: Henyey-Greenstein g (truncated by delta-M to the bands stored)
-    size_t count() const { return size_t(dims[0]) * dims[1] * dims[2]; }
+    size_t count() const { return index().count(); }
+    GridIndex index() const { return {dims}; }
 };
 
 // Faces of the box, in the order of the boundary flags: x-, x+, y-, y+, z-, z+.

@@ -28,7 +28,7 @@ struct Gather {
     Cell near{};  // cells per axis within which a pair is near
     std::array<std::vector<double>, 8> sign;  // Y_m of a direction mirrored in the axes of bit mask / Y_m of it
 
-    size_t index(const Cell& c) const { return c[0] + size_t(grid.dims[0]) * (c[1] + size_t(grid.dims[1]) * c[2]); }
+    size_t index(const Cell& c) const { return grid.index()(c); }
     glm::dvec3 extinction(const Cell& c) const { return glm::dvec3(glm::vec3(grid.extinction[index(c)])); }
     bool isNear(const Cell& d) const {
         return std::abs(d[0]) <= near[0] && std::abs(d[1]) <= near[1] && std::abs(d[2]) <= near[2];
@@ -207,8 +207,7 @@ std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<dou
 
     std::vector<glm::vec4> out(grid.count() * g.moments, glm::vec4(0.0f));
     tbb::parallel_for(size_t(0), grid.count(), [&](size_t v) {
-        const Cell t{int(v % grid.dims[0]), int(v / grid.dims[0] % grid.dims[1]),
-                     int(v / (size_t(grid.dims[0]) * grid.dims[1]))};
+        const Cell t = grid.index().cell(v);
         std::vector<glm::dvec3> sum(g.moments, glm::dvec3(0.0));
         std::vector<double> y(g.moments);
         for (const SourceCell& s : sources) {
