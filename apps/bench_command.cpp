@@ -5,6 +5,7 @@
 #include "core/run_program.h"
 #include "bench/accuracy_sweep.h"
 #include "bench/cgal_demo_meshes.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "preprocess/preprocessor.h"
 
@@ -14,7 +15,7 @@ Command addBenchCommand(CLI::App& app) {
     struct Options {
         std::vector<std::string> scenes, knobs, cgal;
         double opticalRadius = 1.0;
-        std::string output = "bench-accuracy", backend, quality = "default";
+        std::string output = "bench-accuracy", backend, quality = "default", record;
         int size = 0, frames = 7;
         double tolerance = 1e-3;
         bool plot = true;
@@ -44,6 +45,7 @@ Command addBenchCommand(CLI::App& app) {
         ->check(CLI::IsMember({"draft", "default", "high"}));
     sub->add_option("--backend", o->backend, "osmesa or egl")->check(CLI::IsMember({"osmesa", "egl"}));
     sub->add_flag("!--no-plot", o->plot, "Write the CSV only (the plots need python3-matplotlib)");
+    sub->add_option("--record", o->record, "Also write the results as a Markdown table to this file (docs/results/)");
     return [o] {
         AccuracyBenchOptions options;
         options.knobs = o->knobs;
@@ -53,6 +55,7 @@ Command addBenchCommand(CLI::App& app) {
         options.backend = parseGlBackend(o->backend);
         options.base = qualityPreset(o->quality);
         accuracySweep(options.knobs, options.base);  // rejects an unknown knob before any work
+        if (!o->record.empty()) checkWritable(o->record);
         std::vector<std::filesystem::path> scenes(o->scenes.begin(), o->scenes.end());
         std::filesystem::create_directories(o->output);
         for (const std::string& name : o->cgal) {
@@ -62,8 +65,9 @@ Command addBenchCommand(CLI::App& app) {
         }
         if (scenes.empty()) throw Error("lucent bench accuracy: give scene files, --cgal meshes, or both");
         const std::filesystem::path csv = std::filesystem::path(o->output) / "accuracy.csv";
-        runAccuracyBench(scenes, options, csv);
+        const std::vector<SweepRow> rows = runAccuracyBench(scenes, options, csv);
         std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());
+        if (!o->record.empty()) recordAccuracyBench(rows, options).write(o->record);
         if (!o->plot) return;
         const std::filesystem::path script = installedDataFile("plot-accuracy.py");
         if (runProgram({script.string(), csv.string(), o->output}) != 0)  // its #! line picks Debian's python3

@@ -169,4 +169,21 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
     return rows;
 }
 
+ResultsRecord recordAccuracyBench(const std::vector<SweepRow>& rows, const AccuracyBenchOptions& options) {
+    ResultsRecord out = ResultsRecord::ofThisProcess("lucent bench accuracy");
+    const auto context = OffscreenContext::create(options.backend);  // the sweep's is gone; this names the same renderer
+    out.addDevice(std::string(context->backendName()) + ": " + glRenderer());
+    out.print("each knob moved away from the preset while the others stay; --method ss, median of %d frames after %d "
+              "warm-up, against --method reference (tolerance %g); errors are relative RMSE\n\n",
+              options.frames, options.warmup, options.referenceTolerance);
+    out.tableHeader({"scene", "knob", "value", "samples", "preprocessing (s)", "frame (ms)", "error, all pixels",
+                     "error, 3 px inside", "mean ratio"},
+                    {false, false, true, true, true, true, true, true, true});
+    for (const SweepRow& r : rows)
+        out.print("| %s | %s | %s | %zu | %.2f | %.1f | %.2f%% | %.2f%% | %.3f |\n", r.scene.c_str(), r.knob.c_str(),
+                  r.value.c_str(), r.samples, r.preprocessSeconds, r.frameMilliseconds, 100.0 * r.relativeRmse,
+                  100.0 * r.interiorRelativeRmse, r.meanRatio);
+    return out;
+}
+
 }  // namespace lucent

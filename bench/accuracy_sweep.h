@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/results_record.h"
 #include "core/method.h"
 #include "preprocess/preprocessor.h"
 #include "runtime/offscreen_context.h"
@@ -49,5 +50,8 @@ struct AccuracyBenchOptions {
 // a long run shows progress and keeps what it measured).
 std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>& scenes,
                                        const AccuracyBenchOptions& options, const std::filesystem::path& csvFile);
+
+// The rows as a record of `lucent bench accuracy` (--record): one table, a row a setting.
+ResultsRecord recordAccuracyBench(const std::vector<SweepRow>& rows, const AccuracyBenchOptions& options);
 
 }  // namespace lucent

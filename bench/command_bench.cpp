@@ -12,6 +12,7 @@
 //   build/bin/lucent-bench-command [SCENE] [--size 800] [--rounds 8] [--idle 5]
 //                                  [--baseline "--method reference"]
 //                                  [--variant "--method ss"]... [--out DIR]
+//                                  [--record docs/results/command.md]
 //
 // Prints, per set of options, the wall time (min, median, max), the median
 // processor time and peak resident set, and the baseline's median over its own.
@@ -25,6 +26,8 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/run_program.h"
 #include "core/statistics.h"
@@ -87,8 +90,12 @@ int main(int argc, char** argv) {
     app.add_option("--baseline", baseline, "The options the others are compared with");
     app.add_option("--variant", variants, "Options of a compared run (repeat the flag for more)");
     app.add_option("--out", outDir, "Directory for the images and the runs' output");
+    std::string recordFile;
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
         if (!std::isfinite(idle)) throw Error("--idle", "not a finite number of seconds");
         const std::filesystem::path lucent = siblingProgram("lucent");
         std::filesystem::create_directories(outDir);
@@ -111,19 +118,20 @@ int main(int argc, char** argv) {
 
         const Variant& base = runs.back();
         const double baseMedian = median(base.wall);
-        std::printf("lucent render %s at %dx%d, %d rounds, %.1f s idle before each run\n\n", scene.c_str(), size,
-                    size, rounds, idle);
-        std::printf("| options | wall (s): min | median | max | processor (s) | peak resident (MB) | "
-                    "baseline / this, at the medians | baseline / this, per round (median) |\n"
-                    "|---|---:|---:|---:|---:|---:|---:|---:|\n");
+        out.print("lucent render %s at %dx%d, %d rounds, %.1f s idle before each run\n\n",
+                  std::filesystem::path(scene).filename().c_str(), size, size, rounds, idle);
+        out.tableHeader({"options", "wall (s): min", "median", "max", "processor (s)", "peak resident (MB)",
+                         "baseline / this, at the medians", "baseline / this, per round (median)"},
+                        {false, true, true, true, true, true, true, true});
         for (const Variant& v : runs) {
             std::vector<double> perRound;
             for (size_t i = 0; i < v.wall.size(); ++i) perRound.push_back(base.wall[i] / v.wall[i]);
             const auto [lo, hi] = std::minmax_element(v.wall.begin(), v.wall.end());
-            std::printf("| `%s` | %.3f | %.3f | %.3f | %.3f | %.0f | %.2fx | %.2fx |\n", v.options.c_str(), *lo,
-                        median(v.wall), *hi, median(v.cpu), median(v.peakMb), baseMedian / median(v.wall),
-                        median(perRound));
+            out.print("| `%s` | %.3f | %.3f | %.3f | %.3f | %.0f | %.2fx | %.2fx |\n", v.options.c_str(), *lo,
+                      median(v.wall), *hi, median(v.cpu), median(v.peakMb), baseMedian / median(v.wall),
+                      median(perRound));
         }
+        if (!recordFile.empty()) out.write(recordFile);
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-command: error: %s\n", e.what());
         return 1;

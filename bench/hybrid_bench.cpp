@@ -8,6 +8,7 @@
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z]
+//   every subcommand also takes [--record docs/results/hybrid-SUBCOMMAND.md]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
 // the whole solve, the lattice steps to convergence and the time per step, with
@@ -22,6 +23,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
@@ -48,11 +51,14 @@ SceneDesc sceneOf(const std::string& model, double albedo, double g = 0.0) {
 }
 
 
-void speed(const std::vector<int>& grids, const std::vector<double>& albedos, const std::vector<int>& ks, int repeats,
-           int subSteps) {
+void speed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos,
+           const std::vector<int>& ks, int repeats, int subSteps) {
     hybrid::MultipleScattering solver;
-    std::printf("# device: %s\n", solver.deviceName().c_str());
-    std::printf("grid,albedo,k,mode,lattice_steps,iterations,solve_s,ms_per_lattice_step,march_s,rays,converged\n");
+    out.addDevice("OpenCL: " + solver.deviceName());
+    out.print("lbl's solve on the bundled sphere, one point light; the median of %d repeats\n\n", repeats);
+    out.tableHeader({"grid", "albedo", "k", "mode", "lattice steps", "iterations", "solve (s)", "per lattice step (ms)",
+                     "march (s)", "rays", "converged"},
+                    {true, true, true, false, true, true, true, true, true, true, false});
     auto run = [&](int grid, double albedo, int k, bool concurrent) {
         const SceneDesc scene = sceneOf("sphere", albedo);
         std::vector<std::string> warnings;
@@ -74,10 +80,9 @@ void speed(const std::vector<int>& grids, const std::vector<double>& albedos, co
         const double t = median(times);
         // Marching alone is timed only when it does not overlap diffusion.
         const std::string march = concurrent ? "" : std::to_string(median(marchTimes)).substr(0, 5);
-        std::printf("%d,%.2f,%d,%s,%d,%d,%.3f,%.2f,%s,%zu,%s\n", grid, albedo, k, concurrent ? "concurrent" : "sequential",
+        out.print("| %d | %.2f | %d | %s | %d | %d | %.3f | %.2f | %s | %zu | %s |\n", grid, albedo, k, concurrent ? "concurrent" : "sequential",
                     stats.latticeSteps, stats.iterations, t, 1e3 * t / std::max(1, stats.latticeSteps), march.c_str(),
                     stats.rays, stats.converged ? "yes" : "no");
-        std::fflush(stdout);
     };
     for (int grid : grids)
         for (double albedo : albedos)
@@ -92,12 +97,14 @@ double meanLuminance(const Image& image) {
     return sum / std::max<size_t>(1, image.pixels.size());
 }
 
-void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g,
+void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g,
               const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
               const std::vector<std::string>& models, const std::vector<double>& light) {
-    std::printf("model,albedo,g,grid,directions,moments,path_noise,rmse_ss,rmse_%s,raw_rmse_%s,mean_ratio_%s,%s_s,"
-                "path_s\n",
-                method.c_str(), method.c_str(), method.c_str(), method.c_str());
+    out.print("relative RMSE of luminance against --method path at %d paths per pixel (its own noise taken out), "
+              "%dx%d, no surface term\n\n", spp, size, size);
+    out.tableHeader({"model", "albedo", "g", "grid", "directions", "moments", "path noise", "ss", method,
+                     method + " raw", method + " mean ratio", method + " (s)", "path (s)"},
+                    {false, true, true, true, true, true, true, true, true, true, true, true, true});
     for (const std::string& model : models)
         for (double albedo : albedos) {
             SceneDesc scene = sceneOf(model.c_str(), albedo, g);
@@ -131,10 +138,10 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
                     const Image image = renderWith(findMethod(method), loaded, settings);
                     const double seconds = stopwatch.seconds();
                     const NoisyReferenceError e = luminanceRelativeRmse(image, pathA, pathB);
-                    std::printf("%s,%.2f,%.2f,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.2f,%.1f\n", model.c_str(), albedo, g,
+                    out.print("| %s | %.2f | %.2f | %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.1f |\n",
+                              model.c_str(), albedo, g,
                                 grid, n, m, e.noise, ssError.debiased, e.debiased, e.raw,
                                 meanLuminance(image) / meanLuminance(path), seconds, pathSeconds);
-                    std::fflush(stdout);
                 }
         }
 }
@@ -143,12 +150,15 @@ void accuracy(const std::vector<int>& grids, const std::vector<double>& albedos,
 // number of scattering iterations; time per iteration and per octant sweep,
 // device memory, and after each iteration the share of the converged light
 // still missing (the converged solve runs first, untimed, and compiles the kernels).
-void mdomSpeed(const std::vector<int>& grids, const std::vector<int>& directions, int iterations, double albedo,
+void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<int>& directions, int iterations, double albedo,
                double g, int repeats, int moments) {
     hybrid::MdomScattering solver;
-    std::printf("# device: %s; sphere, albedo %.2f, g %.2f\n", solver.deviceName().c_str(), albedo, g);
-    std::printf("grid,directions,moments,iterations,solve_s,per_iteration_s,per_sweep_s,direct_s,memory_mib,"
-                "missing_after_each\n");
+    out.addDevice("OpenCL: " + solver.deviceName());
+    out.print("mdom on the bundled sphere, albedo %.2f, g %.2f, one point light; the median of %d repeats\n\n",
+              albedo, g, repeats);
+    out.tableHeader({"grid", "directions", "moments", "iterations", "solve (s)", "per iteration (s)", "per sweep (s)",
+                     "direct (s)", "memory (MiB)", "missing after each iteration"},
+                    {true, true, true, true, true, true, true, true, true, false});
     const SceneDesc scene = sceneOf("sphere", albedo, g);
     std::vector<std::string> warnings;
     const VolumeObject object(scene.objects[0], warnings);
@@ -182,9 +192,8 @@ void mdomSpeed(const std::vector<int>& grids, const std::vector<int>& directions
             const double t = median(times);
             const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);
             const size_t bytes = hybrid::MdomScattering::bytesFor(shape.dims, n, s.bands);
-            std::printf("%d,%d,%d,%d,%.2f,%.2f,%.3f,%.2f,%zu,%s\n", grid, n, s.bands * s.bands, iterations, t,
+            out.print("| %d | %d | %d | %d | %.2f | %.2f | %.3f | %.2f | %zu | %s |\n", grid, n, s.bands * s.bands, iterations, t,
                         t / iterations, t / (8 * iterations), median(directs), bytes >> 20, missing.c_str());
-            std::fflush(stdout);
         }
 }
 
@@ -231,12 +240,18 @@ int main(int argc, char** argv) {
     int mdomMoments = 16;
     md->add_option("--moments", mdomMoments, "Stored moments (4, 9, 16, 25, 36); fewer fit larger grids")
         ->check(CLI::IsMember({4, 9, 16, 25, 36}));
+    std::string recordFile;
+    for (CLI::App* sub : {sp, ac, md})
+        sub->add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
-        if (md->parsed()) mdomSpeed(mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
-        else if (sp->parsed()) speed(grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
-        else accuracy(grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
+        if (md->parsed()) mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
+        else if (sp->parsed()) speed(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
+        else accuracy(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
                       directions, moments, models, light);
+        if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());
         return 1;

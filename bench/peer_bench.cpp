@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
@@ -84,8 +86,12 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "ss: untimed frames first")->check(CLI::Range(0, 10000));
     app.add_option("--blender", blender, "The Blender program (Debian's blender package)");
     app.add_option("--out", outDir, "Directory for the images and Cycles' scene");
+    std::string recordFile;
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
         SceneDesc scene = peerScene(sceneFile, size, distance);
         std::vector<std::string> warnings;
         const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
@@ -112,6 +118,7 @@ int main(int argc, char** argv) {
 
         // ss: frames after warm-up on this machine's OpenGL.
         const auto context = OffscreenContext::create(GlBackend::Auto);
+        out.addDevice(std::string(context->backendName()) + ": " + glRenderer());
         OffscreenFrame frame(size, size);
         ScatteringRenderer renderer;
         renderer.addObject(translucentObjectFor(object, sampleSet));
@@ -154,11 +161,11 @@ int main(int argc, char** argv) {
         if (status != 0)
             throw Error(blender, "Cycles' render failed (exit " + std::to_string(status) + "; see " + log.string() + ")");
 
-        std::printf("scene %s's first object and light, sigma_t 8, albedo 0.95, %dx%d, camera %.2f away; "
-                    "error: relative RMSE 2 px inside the silhouette against --method reference (%.2f s)\n\n",
-                    sceneFile.c_str(), size, size, distance, referenceSeconds);
-        std::printf("| renderer | setting | error | render time (s) |\n|---|---|---:|---:|\n");
-        std::printf("| ss | default quality (preprocessing %.1f s apart), median of %d frames | %.2f%% | %.4f |\n",
+        out.print("scene %s's first object and light, sigma_t 8, albedo 0.95, %dx%d, camera %.2f away; "
+                  "error: relative RMSE 2 px inside the silhouette against --method reference (%.2f s)\n\n",
+                  std::filesystem::path(sceneFile).filename().c_str(), size, size, distance, referenceSeconds);
+        out.tableHeader({"renderer", "setting", "error", "render time (s)"}, {false, false, true, true});
+        out.print("| ss | default quality (preprocessing %.1f s apart), median of %d frames | %.2f%% | %.4f |\n",
                     preprocessSeconds, frames, 100.0 * ssError, ssSeconds);
         std::ifstream timesFile(dir / "cycles-times.csv");
         std::string line;
@@ -171,7 +178,7 @@ int main(int argc, char** argv) {
             if (std::sscanf(line.c_str(), "%d,%lf", &n, &seconds) != 2) throw Error("cycles-times.csv", "bad line: " + line);
             const Image cycles = readPfm(dir / ("cycles-" + std::to_string(n) + ".pfm"));
             const ImageError e = compareImages(cycles, reference, 2);
-            std::printf("| Cycles | %d samples per pixel | %.2f%% (mean ratio %.3f) | %.4f |\n", n, 100.0 * e.relativeRmse,
+            out.print("| Cycles | %d samples per pixel | %.2f%% (mean ratio %.3f) | %.4f |\n", n, 100.0 * e.relativeRmse,
                         e.meanRatio, seconds);
             if (!equalSamples && e.relativeRmse <= ssError) {
                 equalSamples = n;
@@ -179,10 +186,11 @@ int main(int argc, char** argv) {
             }
         }
         if (equalSamples)
-            std::printf("\nAt ss's error (%.2f%%), Cycles needs %d samples per pixel: %.4f s against ss's %.4f s (%.1fx).\n",
+            out.print("\nAt ss's error (%.2f%%), Cycles needs %d samples per pixel: %.4f s against ss's %.4f s (%.1fx).\n",
                         100.0 * ssError, equalSamples, equalSeconds, ssSeconds, equalSeconds / ssSeconds);
         else
-            std::printf("\nNo sample count swept brings Cycles to ss's error (%.2f%%).\n", 100.0 * ssError);
+            out.print("\nNo sample count swept brings Cycles to ss's error (%.2f%%).\n", 100.0 * ssError);
+        if (!recordFile.empty()) out.write(recordFile);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-peer: error: %s\n", e.what());

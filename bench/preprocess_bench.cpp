@@ -3,12 +3,15 @@
 // cast per second, for several direction counts, median of repeated runs.
 //
 //   build/bin/lucent-bench-preprocess [SCENE] [--samples N] [--repeats R] [--directions 64,128,256]
+//                                     [--record docs/results/preprocess.md]
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
-#include <sstream>
+#include <filesystem>
 
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/statistics.h"
 #include "core/scene.h"
@@ -16,10 +19,6 @@
 #include "preprocess/preprocessor.h"
 
 using namespace lucent;
-
-namespace {
-
-}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Lucent preprocessing benchmark (thesis Table 3.1)"};
@@ -30,15 +29,20 @@ int main(int argc, char** argv) {
     app.add_option("--samples", samples, "Target sample count");
     app.add_option("--repeats", repeats, "Runs per setting (the median is reported)");
     app.add_option("--directions", directions, "Heuristic direction counts")->delimiter(',');
+    std::string recordFile;
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
         const SceneDesc scene = parseScene(sceneFile);
         std::vector<std::string> warnings;
         const VolumeObject object(scene.objects.front(), warnings);
-        std::printf("scene %s, object %s: %zu triangles, target %d samples, %d repeats (median)\n\n",
-                    sceneFile.c_str(), object.desc().name.c_str(), object.mesh().triangles.size(), samples, repeats);
-        std::printf("| directions | samples | layers (s) | optical depth for heuristic (s) | divergence (s) | Poisson disks (s) | SH projection (s) | total (s) | Mrays/s |\n");
-        std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        out.print("scene %s, object %s: %zu triangles, target %d samples, %d repeats (median)\n\n",
+                    std::filesystem::path(sceneFile).filename().c_str(), object.desc().name.c_str(), object.mesh().triangles.size(), samples, repeats);
+        out.tableHeader({"directions", "samples", "layers (s)", "optical depth for heuristic (s)", "divergence (s)",
+                         "Poisson disks (s)", "SH projection (s)", "total (s)", "Mrays/s"},
+                        std::vector<bool>(9, true));
         for (int d : directions) {
             std::vector<double> layers, moments, divergence, poisson, projection, total, rate;
             size_t count = 0;
@@ -59,11 +63,11 @@ int main(int argc, char** argv) {
                 total.push_back(t.total());
                 rate.push_back(double(t.heuristicRays + t.projectionRays) / (t.firstMoments + t.projection) / 1e6);
             }
-            std::printf("| %d | %zu | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", d, count, median(layers),
-                        median(moments), median(divergence), median(poisson), median(projection), median(total),
-                        median(rate));
-            std::fflush(stdout);
+            out.print("| %d | %zu | %.2f | %.2f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", d, count, median(layers),
+                      median(moments), median(divergence), median(poisson), median(projection), median(total),
+                      median(rate));
         }
+        if (!recordFile.empty()) out.write(recordFile);
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-preprocess: error: %s\n", e.what());
         return 1;

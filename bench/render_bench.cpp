@@ -6,11 +6,16 @@
 // against --method reference.
 //
 //   build/bin/lucent-bench-render [SCENE] [--frames N] [--warmup N] [--scales-only]
+//                                 [--record docs/results/render.md]
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
@@ -40,6 +45,144 @@ std::vector<Light> lightsAround(int count, const Bounds3& bounds) {
     return std::vector<Light>(size_t(count), l);
 }
 
+// What every table of the benchmark shares: the object, the view, the target,
+// how many frames to time, and the record the tables go to.
+struct Bench {
+    const SceneDesc& scene;
+    const VolumeObject& object;
+    Bounds3 bounds;
+    ViewSetup view;
+    OffscreenFrame& frame;
+    int frames, warmup;
+    ResultsRecord& out;
+
+    SampleSet samplesFor(int count) const {
+        PreprocessSettings s;
+        s.samples = count;
+        std::fprintf(stderr, "preprocessing %d samples...\n", count);
+        return checkSamplesBelong(object, preprocessObject(object, s), "in-memory samples of " + object.desc().name);
+    }
+};
+
+// The scattering at 1/1, 1/2 and 1/4 of the resolution, interleaved frame by
+// frame; each image against the reference, 2 px inside the silhouette and in all.
+void scalesTable(const Bench& b, const std::string& imagesDir) {
+    const SampleSet samples = b.samplesFor(50000);
+    const std::vector<int> scales = {1, 2, 4};
+    SceneDesc scene = b.scene;
+    scene.lights = lightsAround(1, b.bounds);
+    ScatteringRenderer renderer;
+    renderer.addObject(translucentObjectFor(b.object, samples));
+    renderer.setLights(scene.lights);
+    std::vector<std::vector<double>> times(scales.size());
+    std::vector<Image> images;
+    for (int round = 0; round < b.warmup + b.frames; ++round)
+        for (size_t k = 0; k < scales.size(); ++k) {
+            DrawOptions options;
+            options.surface = false;
+            options.scatterScale = scales[k];
+            b.frame.bindAndClear();
+            const double t = timeGlWork([&] { renderer.draw(b.view, options); });
+            if (round >= b.warmup) times[k].push_back(t);
+            if (round == 0) images.push_back(b.frame.read());
+        }
+    std::fprintf(stderr, "rendering the reference...\n");
+    ReferenceSettings rs;
+    rs.surface = false;
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const Image reference = ReferenceRenderer(scene, objects).render(rs);
+    b.out.print("%zu samples, %d interleaved rounds, surface off; error: relative RMSE against --method reference\n\n",
+                samples.size(), b.frames);
+    b.out.tableHeader({"scattering at", "frame (ms)", "vs full", "error, 2 px inside", "error, all pixels"},
+                      {false, true, true, true, true});
+    for (size_t k = 0; k < scales.size(); ++k) {
+        const double t = median(times[k]);
+        b.out.print("| 1/%d | %.1f | %.2fx | %.2f%% | %.2f%% |\n", scales[k], 1e3 * t, median(times[0]) / t,
+                    100.0 * compareImages(images[k], reference, 2).relativeRmse,
+                    100.0 * compareImages(images[k], reference).relativeRmse);
+    }
+    b.out.print("\n");
+    if (!imagesDir.empty()) {
+        const float exposure = autoExposure(reference);
+        writeImage(imagesDir + "/reference.png", reference, exposure);
+        for (size_t k = 0; k < scales.size(); ++k)
+            writeImage(imagesDir + "/scatter-1-" + std::to_string(scales[k]) + ".png", images[k], exposure);
+    }
+}
+
+// Thesis Table 3.2: the frame against the sample count, and the share of the
+// proxies' fragments that carry a Gaussian above the cut-off.
+void samplesTable(const Bench& b) {
+    b.out.print("frames at the default scattering resolution (by the samples' radius on screen); useful fragments "
+                "at full resolution (useful: of the fragments shaded; of llvmpipe's fragment shader invocations, "
+                "counted in 4x4 blocks)\n\n");
+    b.out.tableHeader({"samples", "frame (ms)", "fps", "useful fragments", "of invocations"},
+                      std::vector<bool>(5, true));
+    for (int count : {25000, 50000, 100000}) {
+        const SampleSet samples = b.samplesFor(count);
+        ScatteringRenderer renderer;
+        renderer.addObject(translucentObjectFor(b.object, samples));
+        renderer.setLights(lightsAround(1, b.bounds));
+        const double t = medianFrameSeconds(
+            b.warmup, b.frames, [&] { b.frame.bindAndClear(); }, [&] { renderer.draw(b.view); });
+        // The proxies' fragments at full resolution (reduced, the upsampling's own
+        // fragments would count): shaded, and those whose Gaussian is above the
+        // cut-off (ScatterFragments).
+        ScatterFragments fragments;
+        DrawOptions options;
+        options.surface = false;
+        options.scatterScale = 1;
+        options.discardBelow = float(kDefaultGaussianCutoff);
+        options.fragments = &fragments;
+        b.frame.bindAndClear();
+        renderer.draw(b.view, options);
+        auto share = [](unsigned long long part, unsigned long long whole) {
+            return whole > 0 ? 100.0 * double(part) / double(whole) : 0.0;
+        };
+        b.out.print("| %zu | %.1f | %.1f | %.1f%% | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t,
+                    share(fragments.kept, fragments.shaded), share(fragments.kept, fragments.invocations));
+    }
+}
+
+// Thesis Table 3.3: the frame against the number of lights, in three cases:
+// lights that stay put (an isotropic medium then reuses the light each sample
+// receives, traced once), and lights that change every frame, read from the SH
+// again (--light sh) or traced again. The settings are interleaved frame by
+// frame, so that a slow spell of this shared machine lands on every one alike.
+void lightsTable(const Bench& b) {
+    const SampleSet samples = b.samplesFor(58000);
+    const std::vector<int> lightCounts = {1, 2, 4, 8, 16};
+    std::vector<std::unique_ptr<ScatteringRenderer>> renderers;
+    for (int lights : lightCounts) {
+        renderers.push_back(std::make_unique<ScatteringRenderer>());
+        renderers.back()->addObject(translucentObjectFor(b.object, samples));
+        renderers.back()->setLights(lightsAround(lights, b.bounds));
+    }
+    std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size()), traced(lightCounts.size());
+    for (int round = 0; round < b.warmup + 2 * b.frames; ++round)
+        for (size_t k = 0; k < lightCounts.size(); ++k)
+            for (int kind = 0; kind < 3; ++kind) {
+                if (kind > 0) renderers[k]->setLights(lightsAround(lightCounts[k], b.bounds));
+                DrawOptions options;
+                options.tracedLight = kind != 1;
+                b.frame.bindAndClear();
+                const double t = timeGlWork([&] { renderers[k]->draw(b.view, options); });
+                if (round >= b.warmup) (kind == 0 ? still : kind == 1 ? moving : traced)[k].push_back(t);
+            }
+    b.out.print("\n%zu samples, %d interleaved rounds:\n\n", samples.size(), 2 * b.frames);
+    b.out.tableHeader({"lights", "still lights: frame (ms)", "vs 1 light", "changing every frame, SH: frame (ms)",
+                       "vs 1 light", "changing every frame, traced: frame (ms)", "vs 1 light"},
+                      std::vector<bool>(7, true));
+    const double oneStill = median(still[0]), oneMoving = median(moving[0]), oneTraced = median(traced[0]);
+    for (size_t k = 0; k < lightCounts.size(); ++k) {
+        const double s = median(still[k]), m = median(moving[k]), t = median(traced[k]);
+        b.out.print("| %d | %.1f | %+.1f%% | %.1f | %+.1f%% | %.1f | %+.1f%% |\n", lightCounts[k], 1e3 * s,
+                    100.0 * (s / oneStill - 1.0), 1e3 * m, 100.0 * (m / oneMoving - 1.0), 1e3 * t,
+                    100.0 * (t / oneTraced - 1.0));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,154 +191,37 @@ int main(int argc, char** argv) {
     int frames = 15, warmup = 3, size = 800;
     std::string backendName;
     app.add_option("scene", sceneFile, "Scene whose first object is rendered");
-    app.add_option("--frames", frames, "Timed frames per setting (median reported)");
-    app.add_option("--warmup", warmup, "Untimed frames first");
-    app.add_option("--size", size, "Viewport width and height");
+    app.add_option("--frames", frames, "Timed frames per setting (median reported)")->check(CLI::Range(1, 10000));
+    app.add_option("--warmup", warmup, "Untimed frames first")->check(CLI::Range(0, 10000));
+    app.add_option("--size", size, "Viewport width and height")->check(CLI::Range(8, 8192));
     app.add_option("--backend", backendName, "osmesa or egl");
     bool scalesOnly = false;
     app.add_flag("--scales-only", scalesOnly, "Only the table of reduced scattering resolutions");
     std::string imagesDir;
     app.add_option("--images", imagesDir, "Write the reduced-resolution images and the reference there (PNG)");
+    std::string recordFile;
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
         SceneDesc scene = parseScene(sceneFile);
         scene.camera.width = scene.camera.height = size;
         std::vector<std::string> warnings;
         const VolumeObject object(scene.objects.front(), warnings);
         const Bounds3 bounds = object.mesh().bounds();
         const auto context = OffscreenContext::create(parseGlBackend(backendName));
-        const ViewSetup view = viewSetupFor(scene.camera, bounds);
         OffscreenFrame frame(size, size);
-        std::printf("scene %s, %dx%d, %s (%s), median of %d frames after %d warm-up\n\n", sceneFile.c_str(), size,
-                    size, context->backendName(), glRenderer().c_str(), frames,
-                    warmup);
-
-        auto measure = [&](const SampleSet& samples, int lights, ScatterFragments* counted) {
-            ScatteringRenderer renderer;
-            renderer.addObject(translucentObjectFor(object, samples));
-            renderer.setLights(lightsAround(lights, bounds));
-            const double seconds =
-                medianFrameSeconds(warmup, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view); });
-            if (counted) {
-                // The proxies' fragments at full resolution (reduced, the upsampling's
-                // own fragments would count): shaded, and those whose Gaussian is above
-                // the cut-off (ScatterFragments).
-                DrawOptions options;
-                options.surface = false;
-                options.scatterScale = 1;
-                options.discardBelow = float(kDefaultGaussianCutoff);
-                options.fragments = counted;
-                frame.bindAndClear();
-                renderer.draw(view, options);
-            }
-            return seconds;
-        };
-        auto samplesFor = [&](int count) {
-            PreprocessSettings s;
-            s.samples = count;
-            std::fprintf(stderr, "preprocessing %d samples...\n", count);
-            return checkSamplesBelong(object, preprocessObject(object, s), "in-memory samples of " + object.desc().name);
-        };
-
-        // The scattering at 1/1, 1/2 and 1/4 of the resolution, interleaved frame by
-        // frame; each image against the reference, 2 px inside the silhouette and in all.
-        {
-            const SampleSet samples = samplesFor(50000);
-            const std::vector<int> scales = {1, 2, 4};
-            ScatteringRenderer renderer;
-            renderer.addObject(translucentObjectFor(object, samples));
-            scene.lights = lightsAround(1, bounds);
-            renderer.setLights(scene.lights);
-            std::vector<std::vector<double>> times(scales.size());
-            std::vector<Image> images;
-            for (int round = 0; round < warmup + frames; ++round)
-                for (size_t k = 0; k < scales.size(); ++k) {
-                    DrawOptions options;
-                    options.surface = false;
-                    options.scatterScale = scales[k];
-                    frame.bindAndClear();
-                    const double t = timeGlWork([&] { renderer.draw(view, options); });
-                    if (round >= warmup) times[k].push_back(t);
-                    if (round == 0) images.push_back(frame.read());
-                }
-            std::fprintf(stderr, "rendering the reference...\n");
-            ReferenceSettings rs;
-            rs.surface = false;
-            const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
-            const Image reference = ReferenceRenderer(scene, objects).render(rs);
-            std::printf("%zu samples, %d interleaved rounds, surface off; error: relative RMSE against --method reference\n\n"
-                        "| scattering at | frame (ms) | vs full | error, 2 px inside | error, all pixels |\n"
-                        "|---|---:|---:|---:|---:|\n",
-                        samples.size(), frames);
-            for (size_t k = 0; k < scales.size(); ++k) {
-                const double t = median(times[k]);
-                std::printf("| 1/%d | %.1f | %.2fx | %.2f%% | %.2f%% |\n", scales[k], 1e3 * t, median(times[0]) / t,
-                            100.0 * compareImages(images[k], reference, 2).relativeRmse,
-                            100.0 * compareImages(images[k], reference).relativeRmse);
-            }
-            std::printf("\n");
-            std::fflush(stdout);
-            if (!imagesDir.empty()) {
-                const float exposure = autoExposure(reference);
-                writeImage(imagesDir + "/reference.png", reference, exposure);
-                for (size_t k = 0; k < scales.size(); ++k)
-                    writeImage(imagesDir + "/scatter-1-" + std::to_string(scales[k]) + ".png", images[k], exposure);
-            }
-            if (scalesOnly) return 0;
+        out.addDevice(std::string(context->backendName()) + ": " + glRenderer());
+        out.print("scene %s, %dx%d, median of %d frames after %d warm-up\n\n",
+                  std::filesystem::path(sceneFile).filename().c_str(), size, size, frames, warmup);
+        const Bench bench{scene, object, bounds, viewSetupFor(scene.camera, bounds), frame, frames, warmup, out};
+        scalesTable(bench, imagesDir);
+        if (!scalesOnly) {
+            samplesTable(bench);
+            lightsTable(bench);
         }
-        std::printf("frames at the default scattering resolution (by the samples' radius on screen); useful "
-                    "fragments at full resolution "
-                    "(useful: of the fragments shaded; of llvmpipe's fragment shader invocations, counted in "
-                    "4x4 blocks)\n\n"
-                    "| samples | frame (ms) | fps | useful fragments | of invocations |\n|---:|---:|---:|---:|---:|\n");
-        for (int count : {25000, 50000, 100000}) {
-            const SampleSet samples = samplesFor(count);
-            ScatterFragments fragments;
-            const double t = measure(samples, 1, &fragments);
-            auto share = [](unsigned long long part, unsigned long long whole) {
-                return whole > 0 ? 100.0 * double(part) / double(whole) : 0.0;
-            };
-            std::printf("| %zu | %.1f | %.1f | %.1f%% | %.1f%% |\n", samples.size(), 1e3 * t, 1.0 / t,
-                        share(fragments.kept, fragments.shaded), share(fragments.kept, fragments.invocations));
-            std::fflush(stdout);
-        }
-        // The light sweep interleaves the settings frame by frame, so that a slow
-        // spell of this shared machine lands on every setting alike.
-        const SampleSet samples = samplesFor(58000);
-        const std::vector<int> lightCounts = {1, 2, 4, 8, 16};
-        std::vector<std::unique_ptr<ScatteringRenderer>> renderers;
-        for (int lights : lightCounts) {
-            renderers.push_back(std::make_unique<ScatteringRenderer>());
-            renderers.back()->addObject(translucentObjectFor(object, samples));
-            renderers.back()->setLights(lightsAround(lights, bounds));
-        }
-        // Three cases: lights that stay put (an isotropic medium then reuses the light
-        // each sample receives, traced once), and lights that change every frame,
-        // read from the SH again (--light sh) or traced again.
-        std::vector<std::vector<double>> still(lightCounts.size()), moving(lightCounts.size()),
-            traced(lightCounts.size());
-        for (int round = 0; round < warmup + 2 * frames; ++round)
-            for (size_t k = 0; k < lightCounts.size(); ++k)
-                for (int kind = 0; kind < 3; ++kind) {
-                    if (kind > 0) renderers[k]->setLights(lightsAround(lightCounts[k], bounds));
-                    DrawOptions options;
-                    options.tracedLight = kind != 1;
-                    frame.bindAndClear();
-                    const double t = timeGlWork([&] { renderers[k]->draw(view, options); });
-                    if (round >= warmup) (kind == 0 ? still : kind == 1 ? moving : traced)[k].push_back(t);
-                }
-        std::printf("\n%zu samples, %d interleaved rounds:\n\n"
-                    "| lights | still lights: frame (ms) | vs 1 light | changing every frame, SH: frame (ms) | vs 1 "
-                    "light | changing every frame, traced: frame (ms) | vs 1 light |\n"
-                    "|---:|---:|---:|---:|---:|---:|---:|\n",
-                    samples.size(), 2 * frames);
-        const double oneStill = median(still[0]), oneMoving = median(moving[0]), oneTraced = median(traced[0]);
-        for (size_t k = 0; k < lightCounts.size(); ++k) {
-            const double s = median(still[k]), m = median(moving[k]), t = median(traced[k]);
-            std::printf("| %d | %.1f | %+.1f%% | %.1f | %+.1f%% | %.1f | %+.1f%% |\n", lightCounts[k], 1e3 * s,
-                        100.0 * (s / oneStill - 1.0), 1e3 * m, 100.0 * (m / oneMoving - 1.0), 1e3 * t,
-                        100.0 * (t / oneTraced - 1.0));
-        }
+        if (!recordFile.empty()) out.write(recordFile);
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-render: error: %s\n", e.what());
         return 1;
