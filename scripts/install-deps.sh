@@ -32,8 +32,9 @@ packages=(
   # OpenCL for the hybrid (hybrid/): headers, the ICD loader and PoCL, which runs
   # the kernels on the CPU; clinfo to see what the loader finds
   opencl-headers opencl-clhpp-headers ocl-icd-opencl-dev pocl-opencl-icd clinfo
-  # tests and benchmarks; CGAL's demo meshes for lucent bench accuracy --cgal
-  libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo
+  # tests and benchmarks; CGAL's demo meshes for lucent bench accuracy --cgal;
+  # clang-format for the style check (Style.ClangFormat)
+  libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo clang-format
   # the plots of lucent bench accuracy
   python3-matplotlib
 )
