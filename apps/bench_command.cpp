@@ -23,9 +23,10 @@ Command addBenchCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* bench = app.add_subcommand("bench", "Speed/accuracy sweeps (docs/accuracy.md)");
     bench->require_subcommand(1);
-    CLI::App* sub = bench->add_subcommand(
-        "accuracy", "Sweep each quality knob; record preprocessing time, median frame time and error against "
-                    "--method reference; write CSV and the error-versus-time plots");
+    CLI::App* sub =
+        bench->add_subcommand("accuracy",
+                              "Sweep each quality knob; record preprocessing time, median frame time and error against "
+                              "--method reference; write CSV and the error-versus-time plots");
     sub->add_option("scenes", o->scenes, "Scene files");
     sub->add_option("--cgal", o->cgal,
                     "Meshes of CGAL's demo data (Debian's libcgal-demo), each in a scene made for it: elephant, "
@@ -38,9 +39,11 @@ Command addBenchCommand(CLI::App& app) {
     std::string knobHelp = "Knobs to sweep (default all):";
     for (const std::string& k : accuracyKnobNames()) knobHelp += " " + k;
     sub->add_option("--knobs", o->knobs, knobHelp)->delimiter(',');
-    sub->add_option("--size", o->size, "Image width and height (default: each scene camera's)")->check(CLI::Range(8, 4096));
+    sub->add_option("--size", o->size, "Image width and height (default: each scene camera's)")
+        ->check(CLI::Range(8, 4096));
     sub->add_option("--frames", o->frames, "Timed frames per setting (median reported)")->check(CLI::Range(1, 1000));
-    sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")->check(finiteRange(1e-8, 0.5));
+    sub->add_option("--tolerance", o->tolerance, "Quadrature tolerance of the reference")
+        ->check(finiteRange(1e-8, 0.5));
     sub->add_option("--quality", o->quality, "Preset the knobs move away from: draft, default or high")
         ->check(CLI::IsMember({"draft", "default", "high"}));
     sub->add_option("--backend", o->backend, "osmesa or egl")->check(CLI::IsMember({"osmesa", "egl"}));
@@ -60,8 +63,8 @@ Command addBenchCommand(CLI::App& app) {
         std::filesystem::create_directories(o->output);
         for (const std::string& name : o->cgal) {
             const std::filesystem::path dir = std::filesystem::path(o->output) / "cgal";
-            scenes.push_back(writeMeshScene(extractCgalDemoMesh(name, dir), dir, o->opticalRadius,
-                                            o->size > 0 ? o->size : 256));
+            scenes.push_back(
+                writeMeshScene(extractCgalDemoMesh(name, dir), dir, o->opticalRadius, o->size > 0 ? o->size : 256));
         }
         if (scenes.empty()) throw Error("lucent bench accuracy: give scene files, --cgal meshes, or both");
         const std::filesystem::path csv = std::filesystem::path(o->output) / "accuracy.csv";
@@ -71,7 +74,8 @@ Command addBenchCommand(CLI::App& app) {
         if (!o->plot) return;
         const std::filesystem::path script = installedDataFile("plot-accuracy.py");
         if (runProgram({script.string(), csv.string(), o->output}) != 0)  // its #! line picks Debian's python3
-            throw Error(csv.string(), "plotting failed (python3-matplotlib missing? scripts/install-deps.sh installs it)");
+            throw Error(csv.string(),
+                        "plotting failed (python3-matplotlib missing? scripts/install-deps.sh installs it)");
     };
 }
 

@@ -11,7 +11,12 @@ namespace {
 struct Stats {
     double min = HUGE_VAL, max = -HUGE_VAL, sum = 0;
     size_t n = 0;
-    void add(double v) { min = std::min(min, v); max = std::max(max, v); sum += v; ++n; }
+    void add(double v) {
+        min = std::min(min, v);
+        max = std::max(max, v);
+        sum += v;
+        ++n;
+    }
     void print(const char* label) const {
         if (n) std::printf("  %-22s min %-12.5g mean %-12.5g max %.5g\n", label, min, sum / double(n), max);
     }
@@ -34,14 +39,16 @@ Command addInfoCommand(CLI::App& app) {
                     s.bounds.min.z, s.bounds.max.x, s.bounds.max.y, s.bounds.max.z);
         std::printf("  scene fingerprint      %016llx\n", (unsigned long long)s.sceneFingerprint);
         std::printf("  seed                   %llu\n", (unsigned long long)p.seed);
-        std::printf("  directions             %u heuristic, %u projection\n", p.heuristicDirections, p.projectionDirections);
+        std::printf("  directions             %u heuristic, %u projection\n", p.heuristicDirections,
+                    p.projectionDirections);
         std::printf("  layers                 %u, spacing %g\n", p.layerCount, p.layerSpacing);
         std::printf("  mean Poisson radius    %g\n", p.meanRadius);
         std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
         std::printf("  cull epsilon           %g\n", p.cullEpsilon);
         std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)"
-                    : p.scheme == SampleScheme::OpticallyThick ? "optically thick (the surface's closed form, no samples)"
-                                                     : "lucent");
+                                                     : p.scheme == SampleScheme::OpticallyThick
+                                                         ? "optically thick (the surface's closed form, no samples)"
+                                                         : "lucent");
         Stats radius, width, sigmaS, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();
         const std::vector<float>& sh = s.coefficients();  // read from the sample file here, once

@@ -13,8 +13,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "lucent 0.1.0");
     std::map<CLI::App*, lucent::Command> commands;
-    for (auto add : {lucent::addPreprocessCommand, lucent::addRenderCommand, lucent::addViewCommand, lucent::addInfoCommand,
-                     lucent::addBenchCommand, lucent::addTransportCommand, lucent::addPresetsCommand}) {
+    for (auto add :
+         {lucent::addPreprocessCommand, lucent::addRenderCommand, lucent::addViewCommand, lucent::addInfoCommand,
+          lucent::addBenchCommand, lucent::addTransportCommand, lucent::addPresetsCommand}) {
         const size_t before = app.get_subcommands({}).size();
         lucent::Command run = add(app);
         commands[app.get_subcommands({})[before]] = std::move(run);

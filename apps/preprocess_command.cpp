@@ -22,16 +22,23 @@ Command addPreprocessCommand(CLI::App& app) {
         double widthFactor = 0.0;
     };
     auto o = std::make_shared<Options>();
-    CLI::App* sub = app.add_subcommand("preprocess", "Sample every translucent object of a scene and write its sample file");
+    CLI::App* sub =
+        app.add_subcommand("preprocess", "Sample every translucent object of a scene and write its sample file");
     sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
-    sub->add_option("--quality", o->quality, "Preset: draft, default or high")->check(CLI::IsMember({"draft", "default", "high"}));
-    sub->add_option("--samples", o->samples, "Target sample count (overrides the preset)")->check(CLI::Range(1, 50000000));
-    sub->add_option("--directions", o->directions, "Directions d of the density heuristic")->check(CLI::Range(6, 65536));
-    sub->add_option("--projection-directions", o->projectionDirections, "Directions of the SH projection")->check(CLI::Range(16, 65536));
-    sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")->check(CLI::Range(1, int(kMaxSampleShOrder)));
+    sub->add_option("--quality", o->quality, "Preset: draft, default or high")
+        ->check(CLI::IsMember({"draft", "default", "high"}));
+    sub->add_option("--samples", o->samples, "Target sample count (overrides the preset)")
+        ->check(CLI::Range(1, 50000000));
+    sub->add_option("--directions", o->directions, "Directions d of the density heuristic")
+        ->check(CLI::Range(6, 65536));
+    sub->add_option("--projection-directions", o->projectionDirections, "Directions of the SH projection")
+        ->check(CLI::Range(16, 65536));
+    sub->add_option("--sh-order", o->shOrder, "SH bands (order L stores L*L coefficients)")
+        ->check(CLI::Range(1, int(kMaxSampleShOrder)));
     sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same file")->check(unsigned64());
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")->check(finiteRange(0.05, 20.0));
+    sub->add_option("--width-factor", o->widthFactor, "Gaussian FWHM as a multiple of the Poisson radius")
+        ->check(finiteRange(0.05, 20.0));
     sub->add_option("--scheme", o->scheme,
                     "lucent (default) or published: the thesis's scheme as written, for comparison (docs/accuracy.md)")
         ->check(CLI::IsMember({"lucent", "published"}));

@@ -8,8 +8,9 @@ namespace lucent {
 // The material presets with their published coefficients (core/medium_presets.h)
 // and the medium each becomes: sigma_t per mm, albedo, and the one g Lucent uses.
 Command addPresetsCommand(CLI::App& app) {
-    app.add_subcommand("presets", "List the measured materials a scene's medium can name with \"preset\" "
-                                  "(docs/scene-file.md)");
+    app.add_subcommand("presets",
+                       "List the measured materials a scene's medium can name with \"preset\" "
+                       "(docs/scene-file.md)");
     return [] {
         std::printf("%-27s %-16s %-27s %-27s %-21s %-27s %-21s %s\n", "preset", "source", "sigma_s (1/mm)",
                     "sigma_a (1/mm)", "g", "sigma_t (1/mm)", "albedo", "g used");

@@ -17,7 +17,8 @@ namespace lucent {
 Command addRenderCommand(CLI::App& app) {
     struct Options {
         std::string scene, output, method, backend, light = "traced";
-        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64, directions = 48, moments = 16;
+        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64, directions = 48,
+            moments = 16;
         double noise = 0.0;
         std::string seed = "1";
         bool noSurface = false;
@@ -32,7 +33,8 @@ Command addRenderCommand(CLI::App& app) {
     for (const MethodEntry& m : methodTable()) methodHelp += "\n  " + m.name + ": " + m.summary;
     methodHelp += "\n  auto: picks one for the scene and says why";
     sub->add_option("--method", o->method, methodHelp)->check(CLI::IsMember(methodNames()));
-    sub->add_option("--backend", o->backend, "OpenGL backend for GL methods: osmesa or egl")->check(CLI::IsMember({"osmesa", "egl"}));
+    sub->add_option("--backend", o->backend, "OpenGL backend for GL methods: osmesa or egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
     sub->add_option("--width", o->width, "Image width (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", o->height, "Image height (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_flag("--no-surface", o->noSurface, "Leave out the reflected surface term");
@@ -40,9 +42,11 @@ Command addRenderCommand(CLI::App& app) {
                     "Sample methods: the light reaching each sample traced through the objects (traced, default) or "
                     "read from its SH attenuation (sh: the thesis; blurs narrow shadows, no shadows between objects)")
         ->check(CLI::IsMember({"traced", "sh"}));
-    sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")->check(finiteRange(1e-8, 0.5));
+    sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")
+        ->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")->check(CLI::Range(1, 1 << 24));
+    sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")
+        ->check(CLI::Range(1, 1 << 24));
     sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl and mdom (default 64)")
         ->check(CLI::Range(8, 1024));
     sub->add_option("--directions", o->directions,
@@ -61,7 +65,8 @@ Command addRenderCommand(CLI::App& app) {
         ->check(CLI::Range(1, 1 << 20));
     sub->add_option("--seed", o->seed, "Random seed of --method path; the same seed gives the same image")
         ->check(unsigned64());
-    sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")->check(finiteRange(0.0, 1e30));
+    sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")
+        ->check(finiteRange(0.0, 1e30));
     return [o] {
         SceneDesc scene = parseScene(o->scene);
         checkOutputIsNoInput(o->output, inputFilesOf(scene, true));
@@ -96,9 +101,11 @@ Command addRenderCommand(CLI::App& app) {
         const std::string used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy);
         const std::string why = method.reason.empty() ? "" : ", chosen by auto: " + method.reason;
         size_t nonFinite = 0;
-        for (const auto& p : image.pixels) nonFinite += std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) ? 0 : 1;
+        for (const auto& p : image.pixels)
+            nonFinite += std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) ? 0 : 1;
         if (nonFinite > 0)
-            printWarnings({std::to_string(nonFinite) + " pixel(s) overflowed the single-precision range and are "
+            printWarnings({std::to_string(nonFinite) +
+                           " pixel(s) overflowed the single-precision range and are "
                            "written as 0 (lower the light or sigma_t; docs/robustness.md)"});
         writeImage(o->output, image, o->exposure);
         std::fprintf(stderr, "lucent: wrote %s (%dx%d, method %s%s)\n", o->output.c_str(), image.width, image.height,

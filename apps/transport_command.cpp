@@ -43,8 +43,8 @@ Command addTransportCommand(CLI::App& app) {
             s << p.points[i].x << ',' << p.points[i].y << ',' << p.points[i].z << ',' << r.flux[i] << '\n';
         // The volume first: if it cannot be written, neither file appears.
         if (!volume->empty())
-            writeVdbGrid(*volume, "flux", p.cells, p.domain.min, p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]),
-                         r.cellFlux);
+            writeVdbGrid(*volume, "flux", p.cells, p.domain.min,
+                         p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]), r.cellFlux);
         out.commit();
         if (!r.uncollidedWhy.empty()) std::fprintf(stderr, "lucent: transport: %s\n", r.uncollidedWhy.c_str());
         std::fprintf(stderr,
@@ -53,8 +53,9 @@ Command addTransportCommand(CLI::App& app) {
                      p.directions, p.bands * p.bands, r.uncollidedMarched ? "marched" : "swept", r.iterations,
                      r.converged ? "" : " (not converged)", r.seconds, r.device.c_str());
 #else
-        throw Error(*problem + ": lucent transport needs OpenCL, and this build has none (install the OpenCL "
-                               "packages with scripts/install-deps.sh and rebuild)");
+        throw Error(*problem +
+                    ": lucent transport needs OpenCL, and this build has none (install the OpenCL "
+                    "packages with scripts/install-deps.sh and rebuild)");
 #endif
     };
 }

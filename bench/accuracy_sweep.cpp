@@ -32,15 +32,20 @@ struct Knob {
 
 const std::vector<Knob>& knobs() {
     static const std::vector<Knob> table = {
-        {"samples", {5000, 10000, 20000, 40000, 80000}, [](SweepSetting& s, double v) { s.preprocess.samples = int(v); }},
-        {"published", {5000, 10000, 20000, 40000, 80000},
+        {"samples",
+         {5000, 10000, 20000, 40000, 80000},
+         [](SweepSetting& s, double v) { s.preprocess.samples = int(v); }},
+        {"published",
+         {5000, 10000, 20000, 40000, 80000},
          [](SweepSetting& s, double v) {
              s.preprocess = publishedScheme(s.preprocess);
              s.preprocess.samples = int(v);
          }},
-        {"heuristic-directions", {16, 32, 64, 128},
+        {"heuristic-directions",
+         {16, 32, 64, 128},
          [](SweepSetting& s, double v) { s.preprocess.heuristicDirections = int(v); }},
-        {"projection-directions", {32, 64, 128, 256, 512},
+        {"projection-directions",
+         {32, 64, 128, 256, 512},
          [](SweepSetting& s, double v) { s.preprocess.projectionDirections = int(v); }},
         {"sh-order", {2, 3, 4, 5, 6, 7, 8}, [](SweepSetting& s, double v) { s.preprocess.shOrder = int(v); }},
         {"width-factor", {1.0, 1.25, 1.5, 2.0, 2.5}, [](SweepSetting& s, double v) { s.preprocess.widthFactor = v; }},
@@ -150,20 +155,30 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
             const Image image = frame.read();
             const ImageError all = compareImages(image, reference), interior = compareImages(image, reference, 3);
 
-            SweepRow row{sceneName, setting.knob, setting.value, sampleCount, preprocessSeconds, 1e3 * frameSeconds,
-                         all.relativeRmse, all.meanAbsoluteRelativeError, interior.relativeRmse,
-                         interior.meanAbsoluteRelativeError, all.meanRatio};
+            SweepRow row{sceneName,
+                         setting.knob,
+                         setting.value,
+                         sampleCount,
+                         preprocessSeconds,
+                         1e3 * frameSeconds,
+                         all.relativeRmse,
+                         all.meanAbsoluteRelativeError,
+                         interior.relativeRmse,
+                         interior.meanAbsoluteRelativeError,
+                         all.meanRatio};
             rows.push_back(row);
             char line[512];
             std::snprintf(line, sizeof line, "%s,%s,%s,%zu,%.4f,%.3f,%.5f,%.5f,%.5f,%.5f,%.5f\n", row.scene.c_str(),
                           row.knob.c_str(), row.value.c_str(), row.samples, row.preprocessSeconds,
-                          row.frameMilliseconds, row.relativeRmse, row.mare, row.interiorRelativeRmse,
-                          row.interiorMare, row.meanRatio);
+                          row.frameMilliseconds, row.relativeRmse, row.mare, row.interiorRelativeRmse, row.interiorMare,
+                          row.meanRatio);
             csv += line;
             flushCsv();
-            std::fprintf(stderr, "lucent: bench:   %zu samples, preprocess %.2f s, frame %.1f ms, rel. RMSE %.2f%% (interior %.2f%%)\n",
-                         row.samples, row.preprocessSeconds, row.frameMilliseconds, 100 * row.relativeRmse,
-                         100 * row.interiorRelativeRmse);
+            std::fprintf(
+                stderr,
+                "lucent: bench:   %zu samples, preprocess %.2f s, frame %.1f ms, rel. RMSE %.2f%% (interior %.2f%%)\n",
+                row.samples, row.preprocessSeconds, row.frameMilliseconds, 100 * row.relativeRmse,
+                100 * row.interiorRelativeRmse);
         }
     }
     return rows;
@@ -171,11 +186,13 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
 
 ResultsRecord recordAccuracyBench(const std::vector<SweepRow>& rows, const AccuracyBenchOptions& options) {
     ResultsRecord out = ResultsRecord::ofThisProcess("lucent bench accuracy");
-    const auto context = OffscreenContext::create(options.backend);  // the sweep's is gone; this names the same renderer
+    const auto context =
+        OffscreenContext::create(options.backend);  // the sweep's is gone; this names the same renderer
     out.addDevice(std::string(context->backendName()) + ": " + glRenderer());
-    out.print("each knob moved away from the preset while the others stay; --method ss, median of %d frames after %d "
-              "warm-up, against --method reference (tolerance %g); errors are relative RMSE\n\n",
-              options.frames, options.warmup, options.referenceTolerance);
+    out.print(
+        "each knob moved away from the preset while the others stay; --method ss, median of %d frames after %d "
+        "warm-up, against --method reference (tolerance %g); errors are relative RMSE\n\n",
+        options.frames, options.warmup, options.referenceTolerance);
     out.tableHeader({"scene", "knob", "value", "samples", "preprocessing (s)", "frame (ms)", "error, all pixels",
                      "error, 3 px inside", "mean ratio"},
                     {false, false, true, true, true, true, true, true, true});

@@ -43,7 +43,7 @@ struct AccuracyBenchOptions {
     int frames = 7, warmup = 2;
     double referenceTolerance = 1e-3;
     GlBackend backend = GlBackend::Auto;
-    PreprocessSettings base;         // the default quality
+    PreprocessSettings base;  // the default quality
 };
 
 // Runs the sweep on every scene, appending rows to csvFile as they come (so that

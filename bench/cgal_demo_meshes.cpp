@@ -53,7 +53,8 @@ std::filesystem::path extractCgalDemoMesh(const std::string& name, const std::fi
             if (c == ' ') continue;
             if (c < '0' || c > '7') throw Error(archive.string(), "malformed tar header (size of " + path + ")");
             size = size * 8 + uint64_t(c - '0');
-            if (size > (uint64_t(1) << 40)) throw Error(archive.string(), "malformed tar header (size of " + path + ")");
+            if (size > (uint64_t(1) << 40))
+                throw Error(archive.string(), "malformed tar header (size of " + path + ")");
         }
         const uint64_t padded = (size + 511) / 512 * 512;
         if (path == wanted) {
@@ -95,8 +96,8 @@ std::filesystem::path writeMeshScene(const std::filesystem::path& mesh, const st
     };
     std::ostringstream json;
     json.precision(17);
-    json << "{\"camera\": {\"position\": " << vec(eye) << ", \"target\": " << vec(centre) << ", \"fov_y\": 30, \"width\": "
-         << size << ", \"height\": " << size << "},\n"
+    json << "{\"camera\": {\"position\": " << vec(eye) << ", \"target\": " << vec(centre)
+         << ", \"fov_y\": 30, \"width\": " << size << ", \"height\": " << size << "},\n"
          << " \"lights\": [{\"type\": \"point\", \"position\": " << vec(light)
          << ", \"intensity\": " << 10.0 * diagonal * diagonal << "}],\n"
          << " \"objects\": [{\"mesh\": \"" << mesh.filename().string() << "\", \"medium\": {\"sigma_t\": " << sigmaT

@@ -64,8 +64,8 @@ void runOnce(const std::filesystem::path& lucent, const std::string& scene, int 
     const int code = runProgram(argv, log, &usage);
     const double seconds = stopwatch.seconds();
     if (code != 0)
-        throw Error(log.string(), "lucent render " + scene + " " + v.options + " failed (exit " +
-                                      std::to_string(code) + "); its output is in this file");
+        throw Error(log.string(), "lucent render " + scene + " " + v.options + " failed (exit " + std::to_string(code) +
+                                      "); its output is in this file");
     if (timed) {
         v.wall.push_back(seconds);
         v.cpu.push_back(usage.cpuSeconds);

@@ -50,7 +50,6 @@ SceneDesc sceneOf(const std::string& model, double albedo, double g = 0.0) {
     return s;
 }
 
-
 void speed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos,
            const std::vector<int>& ks, int repeats, int subSteps) {
     hybrid::MultipleScattering solver;
@@ -80,9 +79,9 @@ void speed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<
         const double t = median(times);
         // Marching alone is timed only when it does not overlap diffusion.
         const std::string march = concurrent ? "" : std::to_string(median(marchTimes)).substr(0, 5);
-        out.print("| %d | %.2f | %d | %s | %d | %d | %.3f | %.2f | %s | %zu | %s |\n", grid, albedo, k, concurrent ? "concurrent" : "sequential",
-                    stats.latticeSteps, stats.iterations, t, 1e3 * t / std::max(1, stats.latticeSteps), march.c_str(),
-                    stats.rays, stats.converged ? "yes" : "no");
+        out.print("| %d | %.2f | %d | %s | %d | %d | %.3f | %.2f | %s | %zu | %s |\n", grid, albedo, k,
+                  concurrent ? "concurrent" : "sequential", stats.latticeSteps, stats.iterations, t,
+                  1e3 * t / std::max(1, stats.latticeSteps), march.c_str(), stats.rays, stats.converged ? "yes" : "no");
     };
     for (int grid : grids)
         for (double albedo : albedos)
@@ -97,11 +96,13 @@ double meanLuminance(const Image& image) {
     return sum / std::max<size_t>(1, image.pixels.size());
 }
 
-void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size, double g,
-              const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
+void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size,
+              double g, const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
               const std::vector<std::string>& models, const std::vector<double>& light) {
-    out.print("relative RMSE of luminance against --method path at %d paths per pixel (its own noise taken out), "
-              "%dx%d, no surface term\n\n", spp, size, size);
+    out.print(
+        "relative RMSE of luminance against --method path at %d paths per pixel (its own noise taken out), "
+        "%dx%d, no surface term\n\n",
+        spp, size, size);
     out.tableHeader({"model", "albedo", "g", "grid", "directions", "moments", "path noise", "ss", method,
                      method + " raw", method + " mean ratio", method + " (s)", "path (s)"},
                     {false, true, true, true, true, true, true, true, true, true, true, true, true});
@@ -130,19 +131,19 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
             const NoisyReferenceError ssError = luminanceRelativeRmse(ss, pathA, pathB);
             for (int grid : grids)
                 for (int n : method == "mdom" ? directions : std::vector<int>{0})
-                for (int m : method == "mdom" ? moments : std::vector<int>{0}) {
-                    settings.gridResolution = grid;
-                    if (n > 0) settings.directions = n;
-                    if (m > 0) settings.moments = m;
-                    stopwatch.restart();
-                    const Image image = renderWith(findMethod(method), loaded, settings);
-                    const double seconds = stopwatch.seconds();
-                    const NoisyReferenceError e = luminanceRelativeRmse(image, pathA, pathB);
-                    out.print("| %s | %.2f | %.2f | %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.1f |\n",
-                              model.c_str(), albedo, g,
-                                grid, n, m, e.noise, ssError.debiased, e.debiased, e.raw,
-                                meanLuminance(image) / meanLuminance(path), seconds, pathSeconds);
-                }
+                    for (int m : method == "mdom" ? moments : std::vector<int>{0}) {
+                        settings.gridResolution = grid;
+                        if (n > 0) settings.directions = n;
+                        if (m > 0) settings.moments = m;
+                        stopwatch.restart();
+                        const Image image = renderWith(findMethod(method), loaded, settings);
+                        const double seconds = stopwatch.seconds();
+                        const NoisyReferenceError e = luminanceRelativeRmse(image, pathA, pathB);
+                        out.print(
+                            "| %s | %.2f | %.2f | %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.1f |\n",
+                            model.c_str(), albedo, g, grid, n, m, e.noise, ssError.debiased, e.debiased, e.raw,
+                            meanLuminance(image) / meanLuminance(path), seconds, pathSeconds);
+                    }
         }
 }
 
@@ -150,12 +151,12 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
 // number of scattering iterations; time per iteration and per octant sweep,
 // device memory, and after each iteration the share of the converged light
 // still missing (the converged solve runs first, untimed, and compiles the kernels).
-void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<int>& directions, int iterations, double albedo,
-               double g, int repeats, int moments) {
+void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<int>& directions, int iterations,
+               double albedo, double g, int repeats, int moments) {
     hybrid::MdomScattering solver;
     out.addDevice("OpenCL: " + solver.deviceName());
-    out.print("mdom on the bundled sphere, albedo %.2f, g %.2f, one point light; the median of %d repeats\n\n",
-              albedo, g, repeats);
+    out.print("mdom on the bundled sphere, albedo %.2f, g %.2f, one point light; the median of %d repeats\n\n", albedo,
+              g, repeats);
     out.tableHeader({"grid", "directions", "moments", "iterations", "solve (s)", "per iteration (s)", "per sweep (s)",
                      "direct (s)", "memory (MiB)", "missing after each iteration"},
                     {true, true, true, true, true, true, true, true, true, false});
@@ -184,7 +185,8 @@ void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vec
             for (int r = 0; r < repeats; ++r) {
                 missing.clear();
                 solver.solve(object, scene.lights, s, &stats, [&](int, const hybrid::MdomSolution& partial) {
-                    missing += (missing.empty() ? "" : " ") + std::to_string(1.0 - power(partial) / converged).substr(0, 6);
+                    missing +=
+                        (missing.empty() ? "" : " ") + std::to_string(1.0 - power(partial) / converged).substr(0, 6);
                 });
                 times.push_back(stats.sweepSeconds);
                 directs.push_back(stats.directSeconds);
@@ -192,8 +194,9 @@ void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vec
             const double t = median(times);
             const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);
             const size_t bytes = hybrid::MdomScattering::bytesFor(shape.dims, n, s.bands);
-            out.print("| %d | %d | %d | %d | %.2f | %.2f | %.3f | %.2f | %zu | %s |\n", grid, n, s.bands * s.bands, iterations, t,
-                        t / iterations, t / (8 * iterations), median(directs), bytes >> 20, missing.c_str());
+            out.print("| %d | %d | %d | %d | %.2f | %.2f | %.3f | %.2f | %zu | %s |\n", grid, n, s.bands * s.bands,
+                      iterations, t, t / iterations, t / (8 * iterations), median(directs), bytes >> 20,
+                      missing.c_str());
         }
 }
 
@@ -216,7 +219,8 @@ int main(int argc, char** argv) {
     std::vector<int> directions{24, 48, 120}, moments{16};
     std::vector<std::string> models{"sphere", "bunny"};
     auto* ac = app.add_subcommand("accuracy", "Relative RMSE of ss and lbl or mdom against --method path");
-    ac->add_option("--method", method, "The multiple-scattering method measured")->check(CLI::IsMember({"lbl", "mdom"}));
+    ac->add_option("--method", method, "The multiple-scattering method measured")
+        ->check(CLI::IsMember({"lbl", "mdom"}));
     ac->add_option("--directions", directions, "mdom's propagation directions swept")->delimiter(',');
     ac->add_option("--moments", moments, "mdom's stored moments swept (4, 9, 16, 25, 36)")->delimiter(',');
     std::vector<double> light;
@@ -247,10 +251,13 @@ int main(int argc, char** argv) {
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        if (md->parsed()) mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
-        else if (sp->parsed()) speed(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
-        else accuracy(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
-                      directions, moments, models, light);
+        if (md->parsed())
+            mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
+        else if (sp->parsed())
+            speed(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
+        else
+            accuracy(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
+                     directions, moments, models, light);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());

@@ -81,7 +81,9 @@ int main(int argc, char** argv) {
     app.add_option("scene", sceneFile, "Scene whose first object and light are rendered");
     app.add_option("--size", size, "Image width and height")->check(CLI::Range(8, 4096));
     app.add_option("--distance", distance, "Camera distance from its target")->check(CLI::Range(1e-3, 1e6));
-    app.add_option("--samples", samples, "Cycles' samples per pixel swept")->delimiter(',')->check(CLI::Range(1, 1 << 20));
+    app.add_option("--samples", samples, "Cycles' samples per pixel swept")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1 << 20));
     app.add_option("--frames", frames, "ss: timed frames (median reported)")->check(CLI::Range(1, 10000));
     app.add_option("--warmup", warmup, "ss: untimed frames first")->check(CLI::Range(0, 10000));
     app.add_option("--blender", blender, "The Blender program (Debian's blender package)");
@@ -105,8 +107,8 @@ int main(int argc, char** argv) {
         const std::filesystem::path dir = std::filesystem::absolute(outDir);
 
         Stopwatch stopwatch;
-        const SampleSet sampleSet = checkSamplesBelong(
-            object, preprocessObject(object, qualityPreset("default")), "in-memory samples of " + object.desc().name);
+        const SampleSet sampleSet = checkSamplesBelong(object, preprocessObject(object, qualityPreset("default")),
+                                                       "in-memory samples of " + object.desc().name);
         const double preprocessSeconds = stopwatch.seconds();
 
         stopwatch.restart();
@@ -147,8 +149,8 @@ int main(int argc, char** argv) {
                  << "},\n \"lights\": [{\"position\": " << json3(scene.lights[0].position)
                  << ", \"intensity\": " << json3(Vec3(scene.lights[0].power)) << "}],\n"
                  << " \"medium\": {\"sigma_s\": " << json3(Vec3(sigmaS)) << ", \"sigma_a\": " << json3(Vec3(sigmaA))
-                 << ", \"g\": " << m.g << "},\n \"samples\": [" << list << "], \"seed\": 1, \"threads\": 2, \"output\": \""
-                 << dir.string() << "\"}\n";
+                 << ", \"g\": " << m.g << "},\n \"samples\": [" << list
+                 << "], \"seed\": 1, \"threads\": 2, \"output\": \"" << dir.string() << "\"}\n";
             if (!spec) throw Error((dir / "peer-scene.json").string(), "cannot write");
         }
         const std::filesystem::path script = std::filesystem::path(LUCENT_SOURCE_DIR) / "bench/cycles/render_scene.py";
@@ -159,14 +161,16 @@ int main(int argc, char** argv) {
                                        "--python", script.string(), "--", (dir / "peer-scene.json").string()},
                                       log);
         if (status != 0)
-            throw Error(blender, "Cycles' render failed (exit " + std::to_string(status) + "; see " + log.string() + ")");
+            throw Error(blender,
+                        "Cycles' render failed (exit " + std::to_string(status) + "; see " + log.string() + ")");
 
-        out.print("scene %s's first object and light, sigma_t 8, albedo 0.95, %dx%d, camera %.2f away; "
-                  "error: relative RMSE 2 px inside the silhouette against --method reference (%.2f s)\n\n",
-                  std::filesystem::path(sceneFile).filename().c_str(), size, size, distance, referenceSeconds);
+        out.print(
+            "scene %s's first object and light, sigma_t 8, albedo 0.95, %dx%d, camera %.2f away; "
+            "error: relative RMSE 2 px inside the silhouette against --method reference (%.2f s)\n\n",
+            std::filesystem::path(sceneFile).filename().c_str(), size, size, distance, referenceSeconds);
         out.tableHeader({"renderer", "setting", "error", "render time (s)"}, {false, false, true, true});
         out.print("| ss | default quality (preprocessing %.1f s apart), median of %d frames | %.2f%% | %.4f |\n",
-                    preprocessSeconds, frames, 100.0 * ssError, ssSeconds);
+                  preprocessSeconds, frames, 100.0 * ssError, ssSeconds);
         std::ifstream timesFile(dir / "cycles-times.csv");
         std::string line;
         std::getline(timesFile, line);  // header
@@ -175,19 +179,21 @@ int main(int argc, char** argv) {
         while (std::getline(timesFile, line)) {
             int n = 0;
             double seconds = 0.0;
-            if (std::sscanf(line.c_str(), "%d,%lf", &n, &seconds) != 2) throw Error("cycles-times.csv", "bad line: " + line);
+            if (std::sscanf(line.c_str(), "%d,%lf", &n, &seconds) != 2)
+                throw Error("cycles-times.csv", "bad line: " + line);
             const Image cycles = readPfm(dir / ("cycles-" + std::to_string(n) + ".pfm"));
             const ImageError e = compareImages(cycles, reference, 2);
-            out.print("| Cycles | %d samples per pixel | %.2f%% (mean ratio %.3f) | %.4f |\n", n, 100.0 * e.relativeRmse,
-                        e.meanRatio, seconds);
+            out.print("| Cycles | %d samples per pixel | %.2f%% (mean ratio %.3f) | %.4f |\n", n,
+                      100.0 * e.relativeRmse, e.meanRatio, seconds);
             if (!equalSamples && e.relativeRmse <= ssError) {
                 equalSamples = n;
                 equalSeconds = seconds;
             }
         }
         if (equalSamples)
-            out.print("\nAt ss's error (%.2f%%), Cycles needs %d samples per pixel: %.4f s against ss's %.4f s (%.1fx).\n",
-                        100.0 * ssError, equalSamples, equalSeconds, ssSeconds, equalSeconds / ssSeconds);
+            out.print(
+                "\nAt ss's error (%.2f%%), Cycles needs %d samples per pixel: %.4f s against ss's %.4f s (%.1fx).\n",
+                100.0 * ssError, equalSamples, equalSeconds, ssSeconds, equalSeconds / ssSeconds);
         else
             out.print("\nNo sample count swept brings Cycles to ss's error (%.2f%%).\n", 100.0 * ssError);
         if (!recordFile.empty()) out.write(recordFile);

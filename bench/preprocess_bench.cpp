@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
         std::vector<std::string> warnings;
         const VolumeObject object(scene.objects.front(), warnings);
         out.print("scene %s, object %s: %zu triangles, target %d samples, %d repeats (median)\n\n",
-                    std::filesystem::path(sceneFile).filename().c_str(), object.desc().name.c_str(), object.mesh().triangles.size(), samples, repeats);
+                  std::filesystem::path(sceneFile).filename().c_str(), object.desc().name.c_str(),
+                  object.mesh().triangles.size(), samples, repeats);
         out.tableHeader({"directions", "samples", "layers (s)", "optical depth for heuristic (s)", "divergence (s)",
                          "Poisson disks (s)", "SH projection (s)", "total (s)", "Mrays/s"},
                         std::vector<bool>(9, true));

@@ -32,7 +32,6 @@ using namespace lucent;
 
 namespace {
 
-
 // n lights at one place, each with 1/n of the power: the image, and so the
 // fragment work, stays the same, and the sweep measures what each light costs.
 // (Lights in different places also change which samples are lit at all, and with
@@ -114,9 +113,10 @@ void scalesTable(const Bench& b, const std::string& imagesDir) {
 // Thesis Table 3.2: the frame against the sample count, and the share of the
 // proxies' fragments that carry a Gaussian above the cut-off.
 void samplesTable(const Bench& b) {
-    b.out.print("frames at the default scattering resolution (by the samples' radius on screen); useful fragments "
-                "at full resolution (useful: of the fragments shaded; of llvmpipe's fragment shader invocations, "
-                "counted in 4x4 blocks)\n\n");
+    b.out.print(
+        "frames at the default scattering resolution (by the samples' radius on screen); useful fragments "
+        "at full resolution (useful: of the fragments shaded; of llvmpipe's fragment shader invocations, "
+        "counted in 4x4 blocks)\n\n");
     b.out.tableHeader({"samples", "frame (ms)", "fps", "useful fragments", "of invocations"},
                       std::vector<bool>(5, true));
     for (int count : {25000, 50000, 100000}) {

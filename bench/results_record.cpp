@@ -143,10 +143,10 @@ std::string ResultsRecord::text() const {
     for (const std::string& d : devices_) machine += "; " + d;
     std::string code = command_;
     std::replace(code.begin(), code.end(), '`', '\'');  // a backquote would end the code span
-    return "# " + name_ + "\n\n" +  //
-           "- command: `" + code + "`\n" +  //
-           "- commit: " + sourceCommit() + "\n" +  //
-           "- machine: " + machine + "\n" +  //
+    return "# " + name_ + "\n\n" +                      //
+           "- command: `" + code + "`\n" +              //
+           "- commit: " + sourceCommit() + "\n" +       //
+           "- machine: " + machine + "\n" +             //
            "- date: " + utcNow() + "\n\n" + body_;
 }
 

@@ -69,7 +69,11 @@ GridDensity::GridDensity(int nx, int ny, int nz, const Bounds3& bounds, std::vec
 
 double GridDensity::atIndexSpace(const Vec3& u) const {
     auto split = [](double x, int n, int& i, double& f) {
-        if (n == 1) { i = 0; f = 0.0; return; }
+        if (n == 1) {
+            i = 0;
+            f = 0.0;
+            return;
+        }
         x = std::clamp(x, 0.0, double(n - 1));
         i = std::min(int(x), n - 2);
         f = x - i;
@@ -147,7 +151,8 @@ std::unique_ptr<GridDensity> loadRawGrid(const std::filesystem::path& file, int 
 
 std::unique_ptr<GridDensity> loadVdbGrid(const std::filesystem::path& file, const std::string& gridName) {
     DenseFloatGrid grid = coreOpenVdbPlugin().readFloatGrid(file, gridName);
-    return std::make_unique<GridDensity>(grid.nodes[0], grid.nodes[1], grid.nodes[2], grid.bounds, std::move(grid.values));
+    return std::make_unique<GridDensity>(grid.nodes[0], grid.nodes[1], grid.nodes[2], grid.bounds,
+                                         std::move(grid.values));
 }
 
 }  // namespace lucent

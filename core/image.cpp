@@ -88,8 +88,10 @@ public:
             uint32_t lo = 0, hi = kOne;  // the formula gives 255 at 1
             while (lo < hi) {
                 const uint32_t mid = lo + (hi - lo) / 2;
-                if (srgb8Formula(std::bit_cast<float>(mid)) >= code) hi = mid;
-                else lo = mid + 1;
+                if (srgb8Formula(std::bit_cast<float>(mid)) >= code)
+                    hi = mid;
+                else
+                    lo = mid + 1;
             }
             steps_[size_t(code - 1)] = std::bit_cast<float>(lo);
         }
@@ -116,12 +118,13 @@ void writePng(const std::filesystem::path& file, const Image& image, float expos
     if (!(exposure > 0.0f) || !std::isfinite(exposure)) exposure = autoExposure(image);
     static const SrgbEncoder toSrgb8;
     std::vector<unsigned char> rgb(size_t(image.width) * image.height * 3);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, image.pixels.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            const glm::vec3 c = sanitized(image.pixels[i]) * exposure;
-            for (int k = 0; k < 3; ++k) rgb[3 * i + k] = toSrgb8(c[k]);
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, image.pixels.size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i < r.end(); ++i) {
+                              const glm::vec3 c = sanitized(image.pixels[i]) * exposure;
+                              for (int k = 0; k < 3; ++k) rgb[3 * i + k] = toSrgb8(c[k]);
+                          }
+                      });
     AtomicFile out(file);
     out.stream().close();
     FILE* fp = std::fopen(out.temporaryPath().c_str(), "wb");
@@ -178,10 +181,14 @@ float autoExposure(const Image& image) {
 
 void writeImage(const std::filesystem::path& file, const Image& image, float exposure) {
     const std::string ext = file.extension().string();
-    if (ext == ".pfm") writePfm(file, image);
-    else if (ext == ".exr") writeExr(file, image);
-    else if (ext == ".png") writePng(file, image, exposure);
-    else throw Error(file.string(), "unknown image format '" + ext + "' (use .png, .pfm or .exr)");
+    if (ext == ".pfm")
+        writePfm(file, image);
+    else if (ext == ".exr")
+        writeExr(file, image);
+    else if (ext == ".png")
+        writePng(file, image, exposure);
+    else
+        throw Error(file.string(), "unknown image format '" + ext + "' (use .png, .pfm or .exr)");
 }
 
 Image readPfm(const std::filesystem::path& file) {

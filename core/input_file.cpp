@@ -36,10 +36,10 @@ std::string limitText(uint64_t bytes) {
 
 uint64_t regularFileSize(const std::filesystem::path& file, const std::string& what, uint64_t maxBytes) {
     struct stat s {};
-    if (::stat(file.c_str(), &s) != 0)
-        throw Error(file.string(), "cannot open " + what + ": " + std::strerror(errno));
+    if (::stat(file.c_str(), &s) != 0) throw Error(file.string(), "cannot open " + what + ": " + std::strerror(errno));
     if (!S_ISREG(s.st_mode))
-        throw Error(file.string(), "cannot read " + what + ": it is " + describeType(s.st_mode) + ", not a regular file");
+        throw Error(file.string(),
+                    "cannot read " + what + ": it is " + describeType(s.st_mode) + ", not a regular file");
     const uint64_t size = uint64_t(s.st_size);
     if (size > maxBytes)
         throw Error(file.string(), what + " of " + std::to_string(size) + " bytes is larger than the " +
@@ -67,8 +67,8 @@ void checkOutputIsNoInput(const std::filesystem::path& output, const std::vector
     struct stat out {};
     if (::lstat(output.c_str(), &out) != 0) return;  // a new file can be no input
     if (!S_ISREG(out.st_mode))
-        throw Error(output.string(), "will not write over " + describeType(out.st_mode) +
-                                         " (Lucent replaces only regular files)");
+        throw Error(output.string(),
+                    "will not write over " + describeType(out.st_mode) + " (Lucent replaces only regular files)");
     for (const std::filesystem::path& input : inputs) {
         struct stat in {};
         if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)

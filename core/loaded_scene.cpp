@@ -51,7 +51,8 @@ LoadedScene loadScene(const SceneDesc& desc, bool withSampleFiles) {
     try {
         for (size_t i = 0; i < desc.objects.size(); ++i) {
             samples[i] = readSampleFile(desc.objects[i].samples);
-            if (samples[i].sceneFingerprint == desc.objects[i].fingerprint) checkedMeshes[i] = std::move(samples[i].mesh);
+            if (samples[i].sceneFingerprint == desc.objects[i].fingerprint)
+                checkedMeshes[i] = std::move(samples[i].mesh);
             samples[i].mesh = TriangleMesh{};
         }
     } catch (const Error&) {

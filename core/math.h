@@ -16,9 +16,7 @@ inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kInvFourPi = 1.0 / (4.0 * kPi);
 inline constexpr double kInfinity = HUGE_VAL;
 
-inline bool isFinite(const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 struct Bounds3 {
     Vec3 min{kInfinity};
@@ -31,8 +29,7 @@ struct Bounds3 {
     Vec3 center() const { return 0.5 * (min + max); }
     double diagonal() const { return glm::length(max - min); }
     bool contains(const Vec3& p) const {
-        return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y &&
-               p.z <= max.z;
+        return p.x >= min.x && p.y >= min.y && p.z >= min.z && p.x <= max.x && p.y <= max.y && p.z <= max.z;
     }
 };
 

@@ -16,9 +16,9 @@ namespace lucent {
 
 struct MediumPreset {
     const char* name;
-    const char* source;       // "Jensen 2001" or "Narasimhan 2006"
-    Rgb sigmaS, sigmaA;       // mm^-1; Jensen's sigma_s is the reduced sigma_s' (g = 0 below)
-    Rgb g;                    // per channel; 0 where only reduced coefficients were published
+    const char* source;  // "Jensen 2001" or "Narasimhan 2006"
+    Rgb sigmaS, sigmaA;  // mm^-1; Jensen's sigma_s is the reduced sigma_s' (g = 0 below)
+    Rgb g;               // per channel; 0 where only reduced coefficients were published
 
     // What a Lucent medium takes: one g for all channels, the channels' g
     // weighted by their scattering (a channel that does not scatter has no say).

@@ -25,7 +25,8 @@ void checkCount(const std::filesystem::path& file, uint64_t count, const char* w
 uint64_t parseCount(const std::filesystem::path& file, const std::string& word, const char* what) {
     uint64_t n = 0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), n);
-    if (error != std::errc() || end != word.data() + word.size()) fail(file, std::string("bad ") + what + " count '" + word + "'");
+    if (error != std::errc() || end != word.data() + word.size())
+        fail(file, std::string("bad ") + what + " count '" + word + "'");
     return n;
 }
 
@@ -53,7 +54,9 @@ void checkPly(const std::filesystem::path& file, uint64_t size) {
         uint64_t count = 0, minBytes = 0;
     };
     std::vector<Element> elements;
-    auto bad = [&](const std::string& problem) { fail(file, "PLY header line " + std::to_string(lineNumber) + ": " + problem); };
+    auto bad = [&](const std::string& problem) {
+        fail(file, "PLY header line " + std::to_string(lineNumber) + ": " + problem);
+    };
     while (std::getline(in, line)) {
         ++lineNumber;
         headerBytes += line.size() + 1;
@@ -87,7 +90,8 @@ void checkPly(const std::filesystem::path& file, uint64_t size) {
             if (!(words >> type)) bad("property without a type");
             if (type == "list") {
                 std::string countType, itemType;
-                if (!(words >> countType >> itemType >> name) || (words >> extra)) bad("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+                if (!(words >> countType >> itemType >> name) || (words >> extra))
+                    bad("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
                 plyTypeSize(file, itemType);
                 type = countType;  // the list may be empty: its count is all it surely holds
             } else if (!(words >> name) || (words >> extra)) {
@@ -98,8 +102,9 @@ void checkPly(const std::filesystem::path& file, uint64_t size) {
             if (!sawFormat) bad("end_header before any format line");
             for (const Element& e : elements) needed += e.count * e.minBytes;
             if (needed > size - std::min(size, headerBytes))
-                fail(file, "PLY header claims elements of at least " + std::to_string(needed) + " bytes, but the file holds " +
-                               std::to_string(size - std::min(size, headerBytes)) + " after its header");
+                fail(file, "PLY header claims elements of at least " + std::to_string(needed) +
+                               " bytes, but the file holds " + std::to_string(size - std::min(size, headerBytes)) +
+                               " after its header");
             return;
         } else {
             bad("unknown keyword '" + keyword + "'");
@@ -121,7 +126,8 @@ void checkOff(const std::filesystem::path& file, uint64_t size) {
     if (!known) {
         std::string shown;
         for (char c : first.substr(0, 16)) shown += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-        fail(file, "OFF header '" + shown + "' is not one Lucent reads (expected OFF, COFF, NOFF, STOFF, 4OFF, nOFF ...)");
+        fail(file,
+             "OFF header '" + shown + "' is not one Lucent reads (expected OFF, COFF, NOFF, STOFF, 4OFF, nOFF ...)");
     }
     std::string word;
     std::vector<uint64_t> counts;
@@ -145,7 +151,8 @@ void checkOff(const std::filesystem::path& file, uint64_t size) {
     const uint64_t needed = binary ? 12 * counts[0] + 16 * counts[1] : 6 * counts[0] + 8 * counts[1];
     if (needed > size)
         fail(file, "OFF header claims " + std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
-                       " faces, at least " + std::to_string(needed) + " bytes, but the file holds " + std::to_string(size));
+                       " faces, at least " + std::to_string(needed) + " bytes, but the file holds " +
+                       std::to_string(size));
 }
 
 // Face indices of an OBJ against the vertices declared before them (OBJ allows
@@ -180,9 +187,12 @@ void checkObj(const std::filesystem::path& file) {
 }  // namespace
 
 void checkMeshFileClaims(const std::filesystem::path& file, const std::string& extension, uint64_t size) {
-    if (extension == ".ply") checkPly(file, size);
-    else if (extension == ".off") checkOff(file, size);
-    else if (extension == ".obj") checkObj(file);
+    if (extension == ".ply")
+        checkPly(file, size);
+    else if (extension == ".off")
+        checkOff(file, size);
+    else if (extension == ".obj")
+        checkObj(file);
 }
 
 }  // namespace lucent

@@ -168,8 +168,10 @@ bool MeshRaycaster::insideIntervals(const Vec3& origin, const Vec3& dir, double 
         if (c.exits != inside) inside = contains(origin + 0.5 * (start + c.t) * dir);
         if (inside && c.t > start) {
             const double t1 = std::min(c.t, tMax);
-            if (!out.empty() && out.back().t1 >= start) out.back().t1 = t1;
-            else out.push_back({start, t1});
+            if (!out.empty() && out.back().t1 >= start)
+                out.back().t1 = t1;
+            else
+                out.push_back({start, t1});
         }
         inside = !c.exits;
         start = c.t;
@@ -219,12 +221,12 @@ bool MeshRaycaster::contains(const Vec3& p) const {
     return votes >= 2;
 }
 
-
 Vec3 MeshRaycaster::closestPoint(const Vec3& p) const {
     std::call_once(tree_->distanceTreeBuilt, [this] {
         const std::vector<Vec3>& v = tree_->positions;
         tree_->triangles.reserve(tree_->indices.size());
-        for (const auto& t : tree_->indices) tree_->triangles.emplace_back(toCgal(v[t[0]]), toCgal(v[t[1]]), toCgal(v[t[2]]));
+        for (const auto& t : tree_->indices)
+            tree_->triangles.emplace_back(toCgal(v[t[0]]), toCgal(v[t[1]]), toCgal(v[t[2]]));
         tree_->distanceTree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
         tree_->distanceTree.build();
         tree_->distanceTree.accelerate_distance_queries();

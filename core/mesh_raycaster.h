@@ -12,8 +12,8 @@
 namespace lucent {
 
 struct Crossing {
-    double t;     // distance along the (unit) ray direction
-    bool exits;   // true when the ray leaves the enclosed volume here
+    double t;    // distance along the (unit) ray direction
+    bool exits;  // true when the ray leaves the enclosed volume here
     uint32_t face;
 };
 

@@ -24,19 +24,21 @@ inline constexpr double kDefaultGaussianCutoff = 1e-2;
 
 // What a caller may ask of any method; each method reads the fields it knows.
 struct MethodSettings {
-    bool surface = true;     // add the reflected surface term of objects that have one
-    int threads = 0;         // CPU methods: worker threads (0: all cores)
-    double tolerance = 1e-3; // quadrature methods: relative error target per pixel
-    std::string backend;     // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
-    double cutoff = kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
-    bool tracedLight = true;       // sample methods: each sample's light traced, not read from its SH (DrawOptions::tracedLight)
-    int samplesPerPixel = 64;      // Monte Carlo methods: paths per pixel
-    int maxScatter = 1 << 20;      // Monte Carlo methods: collisions per path (1: single scattering)
-    double noiseTarget = 0.0;      // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
-    uint64_t seed = 1;             // Monte Carlo methods: the same seed gives the same image
-    int gridResolution = 64;       // grid methods: voxels along each object's longest side
-    int directions = 48;           // discrete ordinates: propagation directions (24, 48, 80, 120, 168)
-    int moments = 16;              // discrete ordinates: spherical-harmonic moments stored per voxel (4 ... 36)
+    bool surface = true;      // add the reflected surface term of objects that have one
+    int threads = 0;          // CPU methods: worker threads (0: all cores)
+    double tolerance = 1e-3;  // quadrature methods: relative error target per pixel
+    std::string backend;      // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
+    double cutoff =
+        kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
+    bool tracedLight =
+        true;  // sample methods: each sample's light traced, not read from its SH (DrawOptions::tracedLight)
+    int samplesPerPixel = 64;  // Monte Carlo methods: paths per pixel
+    int maxScatter = 1 << 20;  // Monte Carlo methods: collisions per path (1: single scattering)
+    double noiseTarget = 0.0;  // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
+    uint64_t seed = 1;         // Monte Carlo methods: the same seed gives the same image
+    int gridResolution = 64;   // grid methods: voxels along each object's longest side
+    int directions = 48;       // discrete ordinates: propagation directions (24, 48, 80, 120, 168)
+    int moments = 16;          // discrete ordinates: spherical-harmonic moments stored per voxel (4 ... 36)
 };
 
 class Method {
@@ -71,8 +73,8 @@ inline std::vector<std::string> indexMatchedWarnings(const LoadedScene& scene, c
 
 // One row of the method table.
 struct MethodEntry {
-    std::string name;     // what --method takes
-    std::string summary;  // one line for --help and docs
+    std::string name;           // what --method takes
+    std::string summary;        // one line for --help and docs
     bool needsSamples = false;  // reads the objects' sample files (lucent preprocess first)
     bool interactive = false;   // fast enough for the viewer and for auto
     // Why the method cannot run here (no device, no driver), or empty when it can.

@@ -7,8 +7,11 @@
 namespace lucent {
 
 Progress::Progress(std::string stage, size_t total)
-    : stage_(std::move(stage)), total_(total ? total : 1), start_(std::chrono::steady_clock::now()),
-      lastPrint_(start_), terminal_(::isatty(STDERR_FILENO) != 0) {}
+    : stage_(std::move(stage)),
+      total_(total ? total : 1),
+      start_(std::chrono::steady_clock::now()),
+      lastPrint_(start_),
+      terminal_(::isatty(STDERR_FILENO) != 0) {}
 
 Progress::~Progress() {
     if (printed_) print(total_, true);
@@ -35,7 +38,8 @@ void Progress::print(size_t done, bool final) {
         std::fprintf(stderr, "lucent: %s: done in %.1f s        %s", stage_.c_str(), elapsed, end);
     else {
         const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-        std::fprintf(stderr, "lucent: %s: %3.0f%%, about %.0f s left   %s", stage_.c_str(), 100.0 * fraction, left, end);
+        std::fprintf(stderr, "lucent: %s: %3.0f%%, about %.0f s left   %s", stage_.c_str(), 100.0 * fraction, left,
+                     end);
     }
     std::fflush(stderr);
     printed_ = true;

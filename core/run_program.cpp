@@ -57,7 +57,8 @@ int runProgram(const std::vector<std::string>& argv, const std::filesystem::path
 std::filesystem::path installedDataFile(const std::string& name) {
     const std::filesystem::path file = thisProgram().parent_path().parent_path() / "share" / "lucent" / name;
     std::error_code error;
-    if (!std::filesystem::is_regular_file(file, error)) throw Error(file.string(), "missing (is Lucent installed whole?)");
+    if (!std::filesystem::is_regular_file(file, error))
+        throw Error(file.string(), "missing (is Lucent installed whole?)");
     return file;
 }
 

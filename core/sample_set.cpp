@@ -257,12 +257,15 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
         if (!std::isfinite(v) || v < 0.0f)
             throw Error(name, "sample file header holds a negative or non-finite parameter");
     const uint32_t scheme = r.get<uint32_t>();
-    if (scheme > uint32_t(SampleScheme::OpticallyThick)) throw Error(name, "unknown sample scheme " + std::to_string(scheme));
+    if (scheme > uint32_t(SampleScheme::OpticallyThick))
+        throw Error(name, "unknown sample scheme " + std::to_string(scheme));
     p.scheme = SampleScheme(scheme);
     p.regionAxis = r.get<uint32_t>();
-    if (p.regionAxis > kNoRegionAxis) throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
+    if (p.regionAxis > kNoRegionAxis)
+        throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
     // The counts fix the size: check it before allocating anything they claim.
-    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 + sizeof(float) * s.coefficientsPerSample();
+    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 +
+                               sizeof(float) * s.coefficientsPerSample();
     const uint64_t expected = r.offset() + count * perSample + 3 * sizeof(uint64_t);  // and the mesh's
     auto sizeMismatch = [&](uint64_t need, const char* atLeast) {
         return Error(name, "sample file holds " + std::to_string(r.size()) + " bytes but its counts need " + atLeast +
@@ -297,8 +300,9 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     constexpr uint64_t kCorner = 3 * sizeof(float);
     if (vertices > meshBytes / kCorner || triangles > meshBytes / kCorner ||
         kCorner * (vertices + triangles) != meshBytes)
-        throw sizeMismatch(r.offset() + kCorner * (std::min(vertices, meshBytes) + std::min(triangles, meshBytes)) +
-                               sizeof(uint64_t), "");
+        throw sizeMismatch(
+            r.offset() + kCorner * (std::min(vertices, meshBytes) + std::min(triangles, meshBytes)) + sizeof(uint64_t),
+            "");
     const std::vector<glm::vec3> meshPositions = r.getArray<glm::vec3>(vertices);
     s.mesh.triangles = r.getArray<std::array<uint32_t, 3>>(triangles);
     const uint64_t payload = r.checksum();
@@ -322,12 +326,14 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
             throw Error(name, "sample file holds a mesh face with a vertex index out of range");
     if (vertices > 0 && !(s.mesh.bounds().diagonal() >= kMinObjectSize))
         throw Error(name, "sample file holds a mesh smaller than 1e-9 across");
-    for (size_t i = 0; i < count; ++i)
-    {
-        if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f)) throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");
-        if (glm::any(glm::lessThan(s.scattering[i], glm::vec3(0.0f))) || glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
+    for (size_t i = 0; i < count; ++i) {
+        if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f))
+            throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");
+        if (glm::any(glm::lessThan(s.scattering[i], glm::vec3(0.0f))) ||
+            glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
             throw Error(name, "sample " + std::to_string(i) + " has a negative coefficient");
-        if (!(s.region[i].x <= s.region[i].y)) throw Error(name, "sample " + std::to_string(i) + " has an empty region");
+        if (!(s.region[i].x <= s.region[i].y))
+            throw Error(name, "sample " + std::to_string(i) + " has an empty region");
         const BoundaryBall& b = s.boundary[i];
         if (b.valid() && (std::abs(glm::length(b.normal) - 1.0f) > 1e-3f || b.curvature < 0.0f ||
                           b.curvature * b.depth > 1.0f || !(b.share >= 0.0f && b.share <= 1.0f)))

@@ -34,10 +34,10 @@ struct SampleParameters {
     uint32_t heuristicDirections = 64;
     uint32_t projectionDirections = 256;
     uint32_t layerCount = 0;
-    float layerSpacing = 0.0f;   // scene units between offset layers
-    float meanRadius = 0.0f;     // r of thesis 3.2.4
-    float widthFactor = 1.0f;    // Gaussian FWHM = widthFactor * Poisson radius (thesis 3.3.2)
-    float cullEpsilon = 1e-3f;   // samples receiving less than this fraction of full light are culled
+    float layerSpacing = 0.0f;  // scene units between offset layers
+    float meanRadius = 0.0f;    // r of thesis 3.2.4
+    float widthFactor = 1.0f;   // Gaussian FWHM = widthFactor * Poisson radius (thesis 3.3.2)
+    float cullEpsilon = 1e-3f;  // samples receiving less than this fraction of full light are culled
     SampleScheme scheme = SampleScheme::Lucent;
     uint32_t regionAxis = kNoRegionAxis;  // axis of the density slabs the Gaussians are clipped to
 };
@@ -59,22 +59,22 @@ static_assert(sizeof(BoundaryBall) == 6 * sizeof(float));
 class CoefficientsInFile;
 
 struct SampleSet {
-    uint32_t shOrder = 5;        // bands; shOrder^2 coefficients per channel
-    uint32_t channels = 1;       // 1 when sigma_t is grey, 3 when it differs per channel
+    uint32_t shOrder = 5;   // bands; shOrder^2 coefficients per channel
+    uint32_t channels = 1;  // 1 when sigma_t is grey, 3 when it differs per channel
     uint64_t sceneFingerprint = 0;
     Bounds3 bounds;
     SampleParameters parameters;
 
     std::vector<glm::vec3> positions;
-    std::vector<float> radii;          // Poisson-disk radius
-    std::vector<float> widths;         // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
-    std::vector<glm::vec3> scattering; // w_i sigma_s(b_i) per channel: w_i is the partition-of-unity weight
-    std::vector<glm::vec3> extinction; // sigma_t(b_i) per channel
-    std::vector<glm::vec2> region;     // [lo, hi] of the density slab holding b_i along parameters.regionAxis
-    std::vector<glm::vec3> image;      // b_i mirrored across the nearest boundary of its region
-    std::vector<BoundaryBall> boundary;// the SH hold exp(-tau) minus share times its transmittance
-    std::vector<float> sh;             // [sample][channel][coefficient]; read them through coefficients()
-    std::vector<float> truncationError;// fraction of the squared norm of exp(-tau) the ball and SH miss
+    std::vector<float> radii;            // Poisson-disk radius
+    std::vector<float> widths;           // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
+    std::vector<glm::vec3> scattering;   // w_i sigma_s(b_i) per channel: w_i is the partition-of-unity weight
+    std::vector<glm::vec3> extinction;   // sigma_t(b_i) per channel
+    std::vector<glm::vec2> region;       // [lo, hi] of the density slab holding b_i along parameters.regionAxis
+    std::vector<glm::vec3> image;        // b_i mirrored across the nearest boundary of its region
+    std::vector<BoundaryBall> boundary;  // the SH hold exp(-tau) minus share times its transmittance
+    std::vector<float> sh;               // [sample][channel][coefficient]; read them through coefficients()
+    std::vector<float> truncationError;  // fraction of the squared norm of exp(-tau) the ball and SH miss
     // The object's closed mesh in its own space as the preprocessor loaded it
     // (checked, zero-area faces dropped, faces outward), or empty. A render whose
     // object still has the fingerprint takes it from here instead of parsing the

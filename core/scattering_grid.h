@@ -15,10 +15,10 @@
 namespace lucent {
 
 struct ScatteringGrid {
-    Bounds3 bounds;                  // the box the voxels tile, world units
+    Bounds3 bounds;  // the box the voxels tile, world units
     std::array<int, 3> dims{0, 0, 0};
-    std::vector<float> source;       // rgb per voxel, x fastest: sigma_s phi / (4 pi), W / (m^3 sr) in scene units
-    std::vector<float> extinction;   // rgb per voxel: sigma_t weighted by the voxel's occupancy
+    std::vector<float> source;      // rgb per voxel, x fastest: sigma_s phi / (4 pi), W / (m^3 sr) in scene units
+    std::vector<float> extinction;  // rgb per voxel: sigma_t weighted by the voxel's occupancy
     // Per voxel the refractive index n and its gradient (per world unit), four
     // floats, smoothed across the boundary; empty when the medium is
     // index-matched. View rays then bend along the eikonal equation (thesis 4.3).

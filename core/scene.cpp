@@ -69,7 +69,8 @@ DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
         d.axis = a[0] - 'x';
         Node values = n.child("values");
         if (values.arraySize() == 0) values.fail("must hold at least one value");
-        for (size_t i = 0; i < values.arraySize(); ++i) d.values.push_back(values.element(i).number(0.0, kMaxMagnitude));
+        for (size_t i = 0; i < values.arraySize(); ++i)
+            d.values.push_back(values.element(i).number(0.0, kMaxMagnitude));
     } else if (type == "grid") {
         d.type = DensityDesc::Type::Grid;
         Node file = n.child("file");
@@ -111,15 +112,17 @@ MediumDesc parseMedium(Node n, const std::filesystem::path& sceneFile, const Uni
         const MediumPreset* p = findMediumPreset(name.string());
         if (!p) name.fail("unknown preset '" + name.string() + "' (valid: " + mediumPresetNames() + ")");
         if (!units.millimetres)
-            name.fail("a preset needs the scene's top-level \"units\" (\"mm\", \"cm\" or \"m\"): its coefficients "
-                      "are published per mm");
+            name.fail(
+                "a preset needs the scene's top-level \"units\" (\"mm\", \"cm\" or \"m\"): its coefficients "
+                "are published per mm");
         m.sigmaT = p->sigmaT() * *units.millimetres;
         m.albedo = p->albedo();
         m.g = std::clamp(p->meanG(), -0.999, 0.999);
     }
     if (!preset || n.has("sigma_t")) m.sigmaT = n.child("sigma_t").rgb(0.0, kMaxMagnitude);
     if (!preset || n.has("albedo")) m.albedo = n.child("albedo").rgb(0.0, 1.0);
-    if (std::max({m.sigmaT.r, m.sigmaT.g, m.sigmaT.b}) > kMaxMagnitude) n.fail("the preset's sigma_t in these units exceeds 1e30");
+    if (std::max({m.sigmaT.r, m.sigmaT.g, m.sigmaT.b}) > kMaxMagnitude)
+        n.fail("the preset's sigma_t in these units exceeds 1e30");
     if (n.has("g")) m.g = n.child("g").number(-0.999, 0.999);
     if (n.has("ior")) m.ior = n.child("ior").number(1.0, 4.0);
     if (n.has("density")) m.density = parseDensity(n.child("density"), sceneFile);
@@ -155,8 +158,9 @@ Similarity parseTransform(Node n) {
             scale = s.element(0).number(kMinScale, kMaxScale);
             for (size_t i = 1; i < 3; ++i)
                 if (s.element(i).number(kMinScale, kMaxScale) != scale)
-                    s.fail("a non-uniform scale is not supported: the sample file's attenuation holds for uniform "
-                           "scales only (scale the mesh itself and preprocess it again)");
+                    s.fail(
+                        "a non-uniform scale is not supported: the sample file's attenuation holds for uniform "
+                        "scales only (scale the mesh itself and preprocess it again)");
         } else {
             scale = s.number(kMinScale, kMaxScale);
         }
@@ -190,7 +194,8 @@ ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Uni
     for (const auto& b : o.medium.blockers) fp.addFile(b);
     if (o.medium.density.type == DensityDesc::Type::Grid) fp.addFile(o.medium.density.file);
     fp.addText(medium.json().dump());
-    if (medium.json().contains("preset")) fp.addText("units " + units.name);  // the preset's coefficients depend on them
+    if (medium.json().contains("preset"))
+        fp.addText("units " + units.name);  // the preset's coefficients depend on them
     o.fingerprint = fp.value();
     return o;
 }
@@ -233,7 +238,8 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     for (size_t i = 0; i < lights.arraySize(); ++i) scene.lights.push_back(parseLight(lights.element(i)));
     Node objects = root.child("objects");
     if (objects.arraySize() == 0) objects.fail("must hold at least one object");
-    for (size_t i = 0; i < objects.arraySize(); ++i) scene.objects.push_back(parseObject(objects.element(i), file, units));
+    for (size_t i = 0; i < objects.arraySize(); ++i)
+        scene.objects.push_back(parseObject(objects.element(i), file, units));
     if (root.has("render")) scene.render = parseRender(root.child("render"));
     root.rejectUnknownKeys();
     return scene;

@@ -34,12 +34,12 @@ struct SurfaceDesc {
 struct DensityDesc {
     enum class Type { Constant, Layers, Grid };
     Type type = Type::Constant;
-    int axis = 0;                     // layers
-    std::vector<double> values;       // layers
-    std::filesystem::path file;       // grid
-    std::string gridName;             // grid, .vdb
-    int dims[3] = {0, 0, 0};          // grid, raw
-    Bounds3 bounds;                   // grid, raw
+    int axis = 0;                // layers
+    std::vector<double> values;  // layers
+    std::filesystem::path file;  // grid
+    std::string gridName;        // grid, .vdb
+    int dims[3] = {0, 0, 0};     // grid, raw
+    Bounds3 bounds;              // grid, raw
 };
 
 struct MediumDesc {
@@ -55,7 +55,7 @@ struct ObjectDesc {
     MediumDesc medium;
     std::optional<SurfaceDesc> surface;
     std::filesystem::path samples;
-    Similarity transform;  // object to world; not part of the fingerprint: one sample file serves every placement
+    Similarity transform;      // object to world; not part of the fingerprint: one sample file serves every placement
     uint64_t fingerprint = 0;  // of the mesh, blocker and grid bytes and the medium: ties a sample file to it
 };
 

@@ -21,9 +21,9 @@ glm::dmat3 randomRotation(Rng& rng) {
     const double u1 = rng.uniform(), u2 = 2 * kPi * rng.uniform(), u3 = 2 * kPi * rng.uniform();
     const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
     const double w = a * std::sin(u2), x = a * std::cos(u2), y = b * std::sin(u3), z = b * std::cos(u3);
-    return glm::dmat3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y),
-                      2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x),
-                      2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
+    return glm::dmat3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y), 2 * (x * y - w * z),
+                      1 - 2 * (x * x + z * z), 2 * (y * z + w * x), 2 * (x * z + w * y), 2 * (y * z - w * x),
+                      1 - 2 * (x * x + y * y));
 }
 
 }  // namespace lucent

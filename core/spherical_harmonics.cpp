@@ -36,10 +36,16 @@ void evaluateSh(int order, const Vec3& dir, std::span<double> out) {
         double qPrev2 = 0.0, qPrev1 = qmm;
         for (int l = m; l < order; ++l) {
             double q;
-            if (l == m) q = qmm;
-            else if (l == m + 1) q = z * (2.0 * m + 1.0) * qmm;
-            else q = ((2.0 * l - 1.0) * z * qPrev1 - (l + m - 1.0) * qPrev2) / double(l - m);
-            if (l > m) { qPrev2 = qPrev1; qPrev1 = q; }
+            if (l == m)
+                q = qmm;
+            else if (l == m + 1)
+                q = z * (2.0 * m + 1.0) * qmm;
+            else
+                q = ((2.0 * l - 1.0) * z * qPrev1 - (l + m - 1.0) * qPrev2) / double(l - m);
+            if (l > m) {
+                qPrev2 = qPrev1;
+                qPrev1 = q;
+            }
             const double k = kNorm.k[l][m];
             if (m == 0) {
                 out[shIndex(l, 0)] = k * q;

@@ -90,10 +90,14 @@ TransportProblem parseTransportProblemText(const std::string& text, const std::f
         if (s.has("uncollided")) {
             Node u = s.child("uncollided");
             const std::string how = u.string();
-            if (how == "auto") p.uncollided = TransportProblem::Uncollided::Auto;
-            else if (how == "marched") p.uncollided = TransportProblem::Uncollided::Marched;
-            else if (how == "swept") p.uncollided = TransportProblem::Uncollided::Swept;
-            else u.fail("must be \"auto\", \"marched\" or \"swept\"");
+            if (how == "auto")
+                p.uncollided = TransportProblem::Uncollided::Auto;
+            else if (how == "marched")
+                p.uncollided = TransportProblem::Uncollided::Marched;
+            else if (how == "swept")
+                p.uncollided = TransportProblem::Uncollided::Swept;
+            else
+                u.fail("must be \"auto\", \"marched\" or \"swept\"");
         }
         s.rejectUnknownKeys();
     }

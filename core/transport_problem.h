@@ -23,7 +23,7 @@ struct TransportProblem {
     std::filesystem::path file;
     Bounds3 domain;
     std::array<int, 3> cells{0, 0, 0};
-    std::array<bool, 6> reflective{};  // x-, x+, y-, y+, z-, z+; false: vacuum
+    std::array<bool, 6> reflective{};      // x-, x+, y-, y+, z-, z+; false: vacuum
     std::vector<TransportRegion> regions;  // a later region overrides an earlier one
     std::vector<Vec3> points;
     // solver

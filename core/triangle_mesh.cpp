@@ -219,7 +219,9 @@ TriangleMesh loadClosedMesh(const std::filesystem::path& path, std::vector<std::
     // OpenMesh skips a vertex line it cannot parse ("nan", "inf", garbage) and then
     // every face that uses it, reporting only the faces.
     if (openMeshErrors.find("invalid vertex index") != std::string::npos)
-        throw Error(file, "a vertex has non-finite or malformed coordinates (a face refers to a vertex that could not be read)");
+        throw Error(
+            file,
+            "a vertex has non-finite or malformed coordinates (a face refers to a vertex that could not be read)");
     return checkedClosedMesh(om, openMeshErrors, file, warnings);
 }
 
@@ -257,8 +259,9 @@ TriangleMesh checkedClosedMesh(OmMesh& om, const std::string& openMeshErrors, co
         const Vec3 q(p[0], p[1], p[2]);
         if (!isFinite(q)) throw Error(file, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
         if (std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z)}) > kMaxCoordinate)
-            throw Error(file, "vertex " + std::to_string(v.idx()) + " lies farther than 1e13 from the origin, "
-                              "beyond the single-precision range Lucent renders (docs/robustness.md)");
+            throw Error(file, "vertex " + std::to_string(v.idx()) +
+                                  " lies farther than 1e13 from the origin, "
+                                  "beyond the single-precision range Lucent renders (docs/robustness.md)");
         mesh.positions.push_back(q);
     }
     for (auto e : om.edges())
@@ -275,8 +278,9 @@ TriangleMesh checkedClosedMesh(OmMesh& om, const std::string& openMeshErrors, co
     if (!(mesh.bounds().diagonal() >= kMinObjectSize)) {
         char size[32];
         std::snprintf(size, sizeof size, "%.3g", mesh.bounds().diagonal());
-        throw Error(file, std::string("mesh is ") + size + " across; Lucent renders objects at least 1e-9 across "
-                          "(scale the scene's units; docs/robustness.md)");
+        throw Error(file, std::string("mesh is ") + size +
+                              " across; Lucent renders objects at least 1e-9 across "
+                              "(scale the scene's units; docs/robustness.md)");
     }
     size_t degenerate = 0;
     const double scale = std::max(mesh.bounds().diagonal(), 1e-300);
@@ -287,12 +291,14 @@ TriangleMesh checkedClosedMesh(OmMesh& om, const std::string& openMeshErrors, co
         const Vec3 n = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
                                   mesh.positions[tri[2]] - mesh.positions[tri[0]]);
         // Relative to the model's size so that tiny and huge models behave alike.
-        if (glm::length(n) <= 1e-14 * scale * scale) { ++degenerate; continue; }
+        if (glm::length(n) <= 1e-14 * scale * scale) {
+            ++degenerate;
+            continue;
+        }
         mesh.triangles.push_back(tri);
     }
     if (mesh.triangles.empty()) throw Error(file, "mesh is empty (every face has zero area)");
-    if (degenerate > 0)
-        warnings.push_back(file + ": removed " + std::to_string(degenerate) + " zero-area face(s)");
+    if (degenerate > 0) warnings.push_back(file + ": removed " + std::to_string(degenerate) + " zero-area face(s)");
 
     const double volume = mesh.signedVolume();
     if (!(std::abs(volume) > 0.0)) throw Error(file, "mesh encloses no volume");

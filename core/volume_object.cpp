@@ -12,8 +12,10 @@ namespace {
 
 std::unique_ptr<DensityField> makeDensity(const DensityDesc& d, const Bounds3& objectBounds) {
     switch (d.type) {
-        case DensityDesc::Type::Constant: return std::make_unique<ConstantDensity>();
-        case DensityDesc::Type::Layers: return std::make_unique<LayeredDensity>(d.axis, d.values, objectBounds);
+        case DensityDesc::Type::Constant:
+            return std::make_unique<ConstantDensity>();
+        case DensityDesc::Type::Layers:
+            return std::make_unique<LayeredDensity>(d.axis, d.values, objectBounds);
         case DensityDesc::Type::Grid:
             if (d.file.extension() == ".vdb") return loadVdbGrid(d.file, d.gridName);
             return loadRawGrid(d.file, d.dims[0], d.dims[1], d.dims[2], d.bounds);
@@ -28,12 +30,14 @@ TriangleMesh placedMesh(const TriangleMesh& mesh, const Similarity& placement, c
     for (Vec3& p : placed.positions) {
         p = placement.point(p);
         if (!isFinite(p) || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
-            throw Error(file.string(), "the transform moves a vertex beyond the 1e13 coordinates Lucent supports "
-                                       "(docs/robustness.md)");
+            throw Error(file.string(),
+                        "the transform moves a vertex beyond the 1e13 coordinates Lucent supports "
+                        "(docs/robustness.md)");
     }
     if (!(placed.bounds().diagonal() >= kMinObjectSize))
-        throw Error(file.string(), "the transform shrinks the object below the 1e-9 size Lucent supports "
-                                   "(docs/robustness.md)");
+        throw Error(file.string(),
+                    "the transform shrinks the object below the 1e-9 size Lucent supports "
+                    "(docs/robustness.md)");
     return placed;
 }
 
@@ -49,14 +53,16 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& war
     : VolumeObject(desc, loadClosedMesh(desc.mesh, warnings), loadBlockers(desc, warnings)) {}
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers)
-    : desc_(desc), objectMesh_(std::move(mesh)),
+    : desc_(desc),
+      objectMesh_(std::move(mesh)),
       mesh_(placed() ? placedMesh(objectMesh_, desc.transform, desc.mesh) : std::move(objectMesh_)) {
     if (!placed()) objectMesh_ = TriangleMesh{};
     // The density is the object's: given in its own space, and carried with it.
     density_ = makeDensity(desc.medium.density, objectMesh().bounds());
     if (placed()) density_ = std::make_unique<PlacedDensity>(std::move(density_), desc.transform);
     // sigma_t times the density is what the sample file and the GPU store, in single precision.
-    const double peak = std::max({desc.medium.sigmaT.r, desc.medium.sigmaT.g, desc.medium.sigmaT.b}) * density_->maximum();
+    const double peak =
+        std::max({desc.medium.sigmaT.r, desc.medium.sigmaT.g, desc.medium.sigmaT.b}) * density_->maximum();
     if (peak > kMaxMagnitude) {
         char text[64];
         std::snprintf(text, sizeof text, "%.3g", peak);
@@ -66,14 +72,13 @@ VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vecto
     for (size_t k = 0; k < blockers.size(); ++k) {
         TriangleMesh& blocker = blockers[k];
         const std::string file = k < desc.medium.blockers.size() ? desc.medium.blockers[k].string()
-                                                                  : desc.name + ": blocker " + std::to_string(k);
+                                                                 : desc.name + ": blocker " + std::to_string(k);
         if (placed()) {
             objectBlockerMeshes_.push_back(blocker);
             blocker = placedMesh(blocker, desc.transform, file);
         }
         for (const Vec3& p : blocker.positions)
-            if (!contains(p))
-                throw Error(file, "blocker is not inside its object '" + desc.name + "'");
+            if (!contains(p)) throw Error(file, "blocker is not inside its object '" + desc.name + "'");
         blockers_.emplace_back(blocker);
         blockerMeshes_.push_back(std::move(blocker));
     }
@@ -133,7 +138,8 @@ VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const Medi
     auto within = [&](const Rgb& v, double lo, double hi, const char* what) {
         for (int c = 0; c < 3; ++c)
             if (!(v[c] >= lo && v[c] <= hi))
-                throw Error(name, std::string(what) + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+                throw Error(
+                    name, std::string(what) + " must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
     };
     within(medium.sigmaT, 0.0, kMaxMagnitude, "sigma_t");
     within(medium.albedo, 0.0, 1.0, "albedo");

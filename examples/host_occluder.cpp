@@ -63,14 +63,18 @@ std::vector<glm::vec3> box(glm::vec3 lo, glm::vec3 hi) {
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder] [--depth32f] [--full-resolution]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s SCENE.json OUT.pfm [--no-occluder] [--depth32f] [--full-resolution]\n",
+                     argv[0]);
         return 2;
     }
     bool occluder = true, depth32f = false, fullResolution = false;
     for (int a = 3; a < argc; ++a) {
-        if (std::strcmp(argv[a], "--no-occluder") == 0) occluder = false;
-        else if (std::strcmp(argv[a], "--depth32f") == 0) depth32f = true;
-        else if (std::strcmp(argv[a], "--full-resolution") == 0) fullResolution = true;
+        if (std::strcmp(argv[a], "--no-occluder") == 0)
+            occluder = false;
+        else if (std::strcmp(argv[a], "--depth32f") == 0)
+            depth32f = true;
+        else if (std::strcmp(argv[a], "--full-resolution") == 0)
+            fullResolution = true;
         else {
             std::fprintf(stderr, "lucent-example-host: unknown option %s\n", argv[a]);
             return 2;
@@ -122,7 +126,8 @@ int main(int argc, char** argv) {
         glVertexArrayAttribBinding(vao, 0, 0);
         glUseProgram(program);
         const glm::mat4 viewProjection = view.projection * view.view;
-        glUniformMatrix4fv(glGetUniformLocation(program, "viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+        glUniformMatrix4fv(glGetUniformLocation(program, "viewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(viewProjection));
         glEnable(GL_DEPTH_TEST);
         glBindVertexArray(vao);
         glUniform3f(glGetUniformLocation(program, "colour"), 0.02f, 0.02f, 0.025f);

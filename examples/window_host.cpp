@@ -44,7 +44,8 @@ void main() { result = vec4(0.02, 0.02, 0.025, 1.0); })";
 
 GLuint program() {
     GLuint p = glCreateProgram();
-    for (const auto& [type, source] : {std::pair{GL_VERTEX_SHADER, kVertex}, std::pair{GL_FRAGMENT_SHADER, kFragment}}) {
+    for (const auto& [type, source] :
+         {std::pair{GL_VERTEX_SHADER, kVertex}, std::pair{GL_FRAGMENT_SHADER, kFragment}}) {
         GLuint s = glCreateShader(type);
         glShaderSource(s, 1, &source, nullptr);
         glCompileShader(s);
@@ -87,9 +88,12 @@ int main(int argc, char** argv) {
     std::string first, last;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        if (arg == "--frames" && a + 1 < argc) frames = std::atoi(argv[++a]);
-        else if (arg == "--first" && a + 1 < argc) first = argv[++a];
-        else if (arg == "--last" && a + 1 < argc) last = argv[++a];
+        if (arg == "--frames" && a + 1 < argc)
+            frames = std::atoi(argv[++a]);
+        else if (arg == "--first" && a + 1 < argc)
+            first = argv[++a];
+        else if (arg == "--last" && a + 1 < argc)
+            last = argv[++a];
         else {
             std::fprintf(stderr, "usage: %s [--frames N] [--first FIRST.pfm] [--last LAST.pfm]\n", argv[0]);
             return 2;
@@ -149,7 +153,8 @@ int main(int argc, char** argv) {
         glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
         glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
         const GLuint floorProgram = program();
-        const glm::vec3 floor[6] = {{-3, -0.5f, -3}, {3, -0.5f, -3}, {3, -0.5f, 3}, {-3, -0.5f, -3}, {3, -0.5f, 3}, {-3, -0.5f, 3}};
+        const glm::vec3 floor[6] = {{-3, -0.5f, -3}, {3, -0.5f, -3}, {3, -0.5f, 3},
+                                    {-3, -0.5f, -3}, {3, -0.5f, 3},  {-3, -0.5f, 3}};
         GLuint vao, buffer;
         glCreateVertexArrays(1, &vao);
         glCreateBuffers(1, &buffer);
@@ -169,7 +174,8 @@ int main(int argc, char** argv) {
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             glEnable(GL_DEPTH_TEST);
             glUseProgram(floorProgram);
-            glUniformMatrix4fv(glGetUniformLocation(floorProgram, "viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+            glUniformMatrix4fv(glGetUniformLocation(floorProgram, "viewProjection"), 1, GL_FALSE,
+                               glm::value_ptr(viewProjection));
             glBindVertexArray(vao);
             glDrawArrays(GL_TRIANGLES, 0, 6);
 
@@ -183,7 +189,8 @@ int main(int argc, char** argv) {
 
             if (frame == 0 && !first.empty()) lucent::writeImage(first, readColour(colour));
             if (frame == frames - 1 && !last.empty()) lucent::writeImage(last, readColour(colour));
-            glBlitNamedFramebuffer(framebuffer, 0, 0, 0, kSize, kSize, 0, 0, kSize, kSize, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            glBlitNamedFramebuffer(framebuffer, 0, 0, 0, kSize, kSize, 0, 0, kSize, kSize, GL_COLOR_BUFFER_BIT,
+                                   GL_NEAREST);
             glfwSwapBuffers(window);
         }
         std::fprintf(stderr, "lucent-example-window: drew %d frames, %zu samples\n", frames, renderer.sampleCount());

@@ -110,8 +110,8 @@ MdomSolution MdomProgress::solution() const {
     return s;
 }
 
-MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector<Light>& lights,
-                                   const MdomSettings& s, MdomStats* stats, const IterationCallback& afterIteration) {
+MdomSolution MdomScattering::solve(const VolumeObject& object, const std::vector<Light>& lights, const MdomSettings& s,
+                                   MdomStats* stats, const IterationCallback& afterIteration) {
     const std::unique_ptr<MdomProgress> progress = begin(object, lights, s);
     for (bool more = true; more;) {
         more = progress->iterate();
@@ -267,8 +267,9 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
         solution.extinction = std::move(materials.trueExtinction);
         solution.scattering.resize(voxels);
         for (size_t v = 0; v < voxels; ++v)
-            solution.scattering[v] = materials.opaque[v] ? glm::vec4(0.0f)
-                                                         : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
+            solution.scattering[v] = materials.opaque[v]
+                                         ? glm::vec4(0.0f)
+                                         : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
         solution.peaks = std::move(direct.peaks);
         progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{});
         progress->solver->setSource(device.marchQueue, direct.source);

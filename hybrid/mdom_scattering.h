@@ -60,7 +60,7 @@ struct MdomStats {
     double voxeliseSeconds = 0, directSeconds = 0, sweepSeconds = 0;
     int iterations = 0;
     bool converged = false;
-    Rgb ratio{0.0};           // of the last two generations' light
+    Rgb ratio{0.0};  // of the last two generations' light
 };
 
 class MdomScattering;
@@ -102,7 +102,7 @@ public:
     std::unique_ptr<MdomProgress> begin(const VolumeObject& object, const std::vector<Light>& lights,
                                         const MdomSettings& settings);
     MdomSolution solve(const VolumeObject& object, const std::vector<Light>& lights, const MdomSettings& settings,
-                         MdomStats* stats = nullptr, const IterationCallback& afterIteration = {});
+                       MdomStats* stats = nullptr, const IterationCallback& afterIteration = {});
 
 private:
     struct Impl;

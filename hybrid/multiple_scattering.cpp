@@ -53,9 +53,11 @@ ScatteringGrid MultipleScattering::solve(const VolumeObject& object, const std::
     const double step = s.stepVoxels * shape.voxel;
     // A ray crosses the grid's diagonal in this many steps; more means it is caught
     // bending in circles (total internal reflection in a smoothed index): stopped.
-    const int maxMarchSteps = int(std::ceil(4.0 * std::sqrt(double(shape.dims[0] * shape.dims[0] +
-                                                                   shape.dims[1] * shape.dims[1] +
-                                                                   shape.dims[2] * shape.dims[2])) / s.stepVoxels));
+    const int maxMarchSteps =
+        int(std::ceil(4.0 *
+                      std::sqrt(double(shape.dims[0] * shape.dims[0] + shape.dims[1] * shape.dims[1] +
+                                       shape.dims[2] * shape.dims[2])) /
+                      s.stepVoxels));
 
     try {
         PhotonMarcher marcher(device, impl_->program, grid, albedo, rays, step);

@@ -51,7 +51,8 @@ TransportResult solveTransport(const TransportProblem& p) {
     // The host's copies: the source and the flux read back (M float4 per cell), the materials.
     device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands), DomSolver::largestBufferFor(count, p.bands),
                        what, count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
-    grid.extinction.assign(count, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
+    grid.extinction.assign(count,
+                           glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
     grid.scattering.assign(count, glm::vec4(0.0f));
     grid.phase.assign(count, glm::vec4(0.0f));
     const int moments = p.bands * p.bands;
@@ -79,8 +80,8 @@ TransportResult solveTransport(const TransportProblem& p) {
     const size_t sourceCells = size_t(std::count_if(density.begin(), density.end(), [](double q) { return q > 0.0; }));
     const std::string whyNot = whyNotMarched(p, grid, sourceCells);
     if (p.uncollided == TransportProblem::Uncollided::Marched && !whyNot.empty())
-        throw Error(p.file.string() + ": /solver/uncollided: cannot be \"marched\": " +
-                    whyNot.substr(0, whyNot.find(';')));
+        throw Error(p.file.string() +
+                    ": /solver/uncollided: cannot be \"marched\": " + whyNot.substr(0, whyNot.find(';')));
     r.uncollidedMarched = p.uncollided != TransportProblem::Uncollided::Swept && whyNot.empty();
     if (p.uncollided == TransportProblem::Uncollided::Auto) r.uncollidedWhy = whyNot;
     try {

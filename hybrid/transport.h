@@ -10,7 +10,7 @@
 namespace lucent::hybrid {
 
 struct TransportResult {
-    std::vector<double> flux;  // scalar flux (radiance integrated over 4 pi) at each point, in order
+    std::vector<double> flux;     // scalar flux (radiance integrated over 4 pi) at each point, in order
     std::vector<float> cellFlux;  // the same in every cell, i + nx (j + ny k)
     int iterations = 0;
     bool converged = false;

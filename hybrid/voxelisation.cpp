@@ -28,7 +28,8 @@ void gaussianBlur(std::vector<float>& values, const std::array<int, 3>& dims, do
     const int radius = std::max(1, int(std::ceil(2.5 * sigmaVoxels)));
     std::vector<double> weights(2 * radius + 1);
     double total = 0.0;
-    for (int k = -radius; k <= radius; ++k) total += weights[k + radius] = std::exp(-0.5 * k * k / (sigmaVoxels * sigmaVoxels));
+    for (int k = -radius; k <= radius; ++k)
+        total += weights[k + radius] = std::exp(-0.5 * k * k / (sigmaVoxels * sigmaVoxels));
     for (double& w : weights) w /= total;
     const size_t stride[3] = {1, size_t(dims[0]), size_t(dims[0]) * dims[1]};
     std::vector<float> out(values.size());

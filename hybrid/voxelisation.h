@@ -27,9 +27,7 @@ struct GridShape {
     GridIndex index() const { return {dims}; }
     // The centre of voxel (i, j, k), world units.
     Vec3 centre(int i, int j, int k) const { return origin + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5); }
-    Bounds3 bounds() const {
-        return {origin, origin + voxel * Vec3(dims[0], dims[1], dims[2])};
-    }
+    Bounds3 bounds() const { return {origin, origin + voxel * Vec3(dims[0], dims[1], dims[2])}; }
     // "a 64x48x40 grid for object 'NAME'", for messages.
     std::string describe(const std::string& object) const {
         return "a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +

@@ -13,13 +13,15 @@ std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const
     for (const VolumeObject& o : scene.objects) {
         const MediumDesc& m = o.desc().medium;
         if (m.ior != 1.0)
-            out.push_back("object '" + o.desc().name +
-                          "': ior differs from 1: mdom marches light in straight lines (thesis 5.2) and takes the boundary as "
-                          "index-matched: no refraction, no reflection (--method path refracts)");
+            out.push_back(
+                "object '" + o.desc().name +
+                "': ior differs from 1: mdom marches light in straight lines (thesis 5.2) and takes the boundary as "
+                "index-matched: no refraction, no reflection (--method path refracts)");
         if (std::abs(m.g) > kMdomMaxG)
-            out.push_back("object '" + o.desc().name + "': |g| > " + std::to_string(kMdomMaxG).substr(0, 3) +
-                          ": mdom misses the 10% goal in so strongly forward-scattering a medium, measured 32% from the "
-                          "path tracer at g 0.9 on the sphere, too bright (--method path is the ground truth)");
+            out.push_back(
+                "object '" + o.desc().name + "': |g| > " + std::to_string(kMdomMaxG).substr(0, 3) +
+                ": mdom misses the 10% goal in so strongly forward-scattering a medium, measured 32% from the "
+                "path tracer at g 0.9 on the sphere, too bright (--method path is the ground truth)");
     }
     return out;
 }

@@ -98,37 +98,42 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
         albedo = std::max({albedo, o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});
     const std::string a = std::to_string(albedo).substr(0, 4);
     if (albedo <= kSingleScatteringAlbedo) {
-        const std::string why = "albedo at most " + a + ": single scattering alone is within " + percent(kAutoGoal) +
-                                " of full transport";
+        const std::string why =
+            "albedo at most " + a + ": single scattering alone is within " + percent(kAutoGoal) + " of full transport";
         const long pixels = long(scene.camera.width) * scene.camera.height;
         if (pixels <= kReferenceAsFastPixels && openGlIsSoftware())
-            return {"reference", why + "; OpenGL here is a software rasteriser, on which the exact CPU reference is as "
-                                       "fast as ss for an image this small, and it needs no sample files"};
+            return {"reference", why +
+                                     "; OpenGL here is a software rasteriser, on which the exact CPU reference is as "
+                                     "fast as ss for an image this small, and it needs no sample files"};
         return {"ss", why};
     }
-    const std::string misses = "albedo " + a + ": single scattering alone leaves out the light scattered more than "
+    const std::string misses = "albedo " + a +
+                               ": single scattering alone leaves out the light scattered more than "
                                "once (11-14% of full transport at albedo 0.2, 27-30% at 0.5)";
     // The lattice is a diffusion model: forward-scattering media defeat it.
     double g = 0.0;
     for (const ObjectDesc& o : scene.objects) g = std::max(g, std::abs(o.medium.g));
     if (g > kLatticeMaxG) {
         const std::string gs = std::to_string(g).substr(0, 4);
-        const std::string beyondLbl = misses + ", and |g| " + gs +
-                                      " is beyond what lbl's diffusion holds (33-137% from full transport measured at g 0.8)";
+        const std::string beyondLbl =
+            misses + ", and |g| " + gs +
+            " is beyond what lbl's diffusion holds (33-137% from full transport measured at g 0.8)";
         if (available("mdom") && g <= kMdomMaxG)
-            return {"mdom", beyondLbl + "; mdom follows forward scattering (6.6-8.8% measured at g 0.8, 2-4% up to g 0.4)"};
+            return {"mdom",
+                    beyondLbl + "; mdom follows forward scattering (6.6-8.8% measured at g 0.8, 2-4% up to g 0.4)"};
         // The path tracer is noisy in such media: 17% per pixel at 1024 paths
         // on the sphere at g 0.8, so the goal takes thousands of paths.
         return {"path", beyondLbl +
-                            (available("mdom") ? ", and mdom misses the goal past |g| " + std::to_string(kMdomMaxG).substr(0, 3) +
-                                                     " (32% measured at g 0.9)"
+                            (available("mdom") ? ", and mdom misses the goal past |g| " +
+                                                     std::to_string(kMdomMaxG).substr(0, 3) + " (32% measured at g 0.9)"
                                                : ", and this build has no mdom") +
                             ": the path tracer is the ground truth, but noisy in forward scattering (17% per pixel at "
                             "1024 paths at g 0.8): use --samples 4096 --noise 0.05"};
     }
     if (available("lbl")) return {"lbl", misses + "; lbl adds it (within 3-8% measured)"};
-    return {"ss", misses + ", and this build cannot add it (no lbl): expect a dark image; --method path is the "
-                  "ground truth"};
+    return {"ss", misses +
+                      ", and this build cannot add it (no lbl): expect a dark image; --method path is the "
+                      "ground truth"};
 }
 
 ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {

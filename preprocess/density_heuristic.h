@@ -26,15 +26,15 @@
 namespace lucent {
 
 struct HeuristicSettings {
-    int directions = 64;       // d of thesis 3.2.3
-    double extinction = 1.0;   // scalar sigma_t the heuristic attenuates with
+    int directions = 64;      // d of thesis 3.2.3
+    double extinction = 1.0;  // scalar sigma_t the heuristic attenuates with
     double cullEpsilon = 1e-3;
     uint64_t seed = 1;
 };
 
 struct HeuristicPoint {
-    double density = 0.0;      // |div T|
-    double receivable = 0.0;   // integral exp(-tau) dw / (4 pi), in [0, 1]
+    double density = 0.0;     // |div T|
+    double receivable = 0.0;  // integral exp(-tau) dw / (4 pi), in [0, 1]
     bool culled = true;
 };
 

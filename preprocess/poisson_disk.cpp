@@ -191,7 +191,10 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         if (covered(f)) continue;  // a disk placed since this fragment was queued
         // Throw a dart uniformly into the fragment.
         double u = rng.uniform(), v = rng.uniform();
-        if (u + v > 1.0) { u = 1.0 - u; v = 1.0 - v; }
+        if (u + v > 1.0) {
+            u = 1.0 - u;
+            v = 1.0 - v;
+        }
         const Vec3 x = f.p[0] + u * (f.p[1] - f.p[0]) + v * (f.p[2] - f.p[0]);
         const double rx = f.r[0] + u * (f.r[1] - f.r[0]) + v * (f.r[2] - f.r[0]);
         if (!conflicts(x, rx)) {

@@ -157,16 +157,16 @@ LayerStack buildLayers(const VolumeObject& object, const PreprocessSettings& set
     // One distance field serves the layers and the heuristic. Its voxels are 1.5 r:
     // fine enough for marching cubes to follow the surface at the scale samples
     // resolve, and for central differences of T, which varies over a mean free path.
-    stack.distance = DistanceField::create(
-        object.mesh(), 1.5 * r, (stack.depths.empty() ? 0.0 : stack.depths.back()) + stack.spacing);
+    stack.distance = DistanceField::create(object.mesh(), 1.5 * r,
+                                           (stack.depths.empty() ? 0.0 : stack.depths.back()) + stack.spacing);
     stack.layers = stack.distance->offsetLayers(stack.depths);
     if (stack.layers.empty())
         throw Error(object.desc().mesh.string(), "object is too thin for a single offset layer at depth " +
                                                      std::to_string(firstLayer * stack.spacing));
     // The layers that exist: depths past the object's half thickness have none
     // (the count the sample file records and lucent info shows).
-    std::fprintf(stderr, "lucent: %s: %zu offset layers (spacing %.4g, light depth %.4g)\n",
-                 object.desc().name.c_str(), stack.layers.size(), stack.spacing, std::min(maxDepth, 1e300));
+    std::fprintf(stderr, "lucent: %s: %zu offset layers (spacing %.4g, light depth %.4g)\n", object.desc().name.c_str(),
+                 stack.layers.size(), stack.spacing, std::min(maxDepth, 1e300));
     for (const auto& layer : stack.layers) {
         const uint32_t base = uint32_t(stack.surface.positions.size());
         stack.surface.positions.insert(stack.surface.positions.end(), layer.surface.positions.begin(),
@@ -187,7 +187,8 @@ std::vector<double> relativeRadii(const std::vector<HeuristicPoint>& density, Sa
     if (scheme == SampleScheme::Published) {
         const auto [rhoLo, rhoHi] = densityRange(density);
         for (size_t i = 0; i < density.size(); ++i) {
-            const double rho = density[i].culled ? 0.0 : std::clamp((density[i].density - rhoLo) / (rhoHi - rhoLo), 0.0, 1.0);
+            const double rho =
+                density[i].culled ? 0.0 : std::clamp((density[i].density - rhoLo) / (rhoHi - rhoLo), 0.0, 1.0);
             relativeRadius[i] = std::exp2(1.0 - 2.0 * rho);
         }
     } else {
@@ -232,7 +233,8 @@ std::vector<DiskSample> fitPoissonDisks(const std::string& name, RadiusSurface& 
     }
     if (disks.size() >= budget)
         throw Error(name, "Poisson-disk sampling placed " + std::to_string(budget) + " samples, 8x the " +
-                              std::to_string(settings.samples) + " asked for, and stopped: the offset layers hold far "
+                              std::to_string(settings.samples) +
+                              " asked for, and stopped: the offset layers hold far "
                               "more area than the object's volume suggests (ask for fewer samples or check the mesh)");
     return disks;
 }
@@ -251,13 +253,15 @@ void applyWeights(const VolumeObject& object, const std::vector<WeightedSample>&
     if (!published && nothingCulled && !weights.empty()) {
         double sampledVolume = std::abs(object.mesh().signedVolume());
         for (const TriangleMesh& blocker : object.blockerMeshes()) sampledVolume -= std::abs(blocker.signedVolume());
-        const std::vector<OffsetLayer> floor = stack.distance->offsetLayers({stack.depths.back() + 0.5 * stack.spacing});
+        const std::vector<OffsetLayer> floor =
+            stack.distance->offsetLayers({stack.depths.back() + 0.5 * stack.spacing});
         if (!floor.empty()) sampledVolume -= std::abs(floor.front().surface.signedVolume());
         // What each weighted Gaussian and its image hold inside the region: all of
         // one Gaussian near a single boundary, less where the far side clips them.
         double held = 0.0;
         for (size_t i = 0; i < weights.size(); ++i) {
-            held += weights[i] * heldInside(weighted[i]) * std::pow(2.0 * kPi * double(set.widths[i]) * set.widths[i], 1.5);
+            held +=
+                weights[i] * heldInside(weighted[i]) * std::pow(2.0 * kPi * double(set.widths[i]) * set.widths[i], 1.5);
         }
         if (sampledVolume > 0.0 && held > 0.0) scale = sampledVolume / held;
     }
@@ -272,8 +276,9 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     PreprocessTimings& t = timings ? *timings : local;
     Stopwatch clock;
     if (object.placed())
-        throw Error(object.desc().mesh.string(), "samples are made in the object's own space: preprocess it without "
-                                                 "its transform (withoutTransforms, core/scene.h)");
+        throw Error(object.desc().mesh.string(),
+                    "samples are made in the object's own space: preprocess it without "
+                    "its transform (withoutTransforms, core/scene.h)");
     const MediumDesc& medium = object.desc().medium;
     const TriangleMesh& mesh = object.mesh();
     if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))
@@ -296,9 +301,10 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     // scattering has a closed form (runtime/internal/optically_thick.frag); the
     // object needs no samples.
     if (settings.scheme == SampleScheme::Lucent && maxDepth < kOpticallyThickDepthInRadii * r) {
-        std::fprintf(stderr, "lucent: %s: light dies within %.3g, under %.3g sample spacings: optically thick, "
-                     "drawn as the surface's single scattering (no samples)\n", object.desc().name.c_str(), maxDepth,
-                     maxDepth / r);
+        std::fprintf(stderr,
+                     "lucent: %s: light dies within %.3g, under %.3g sample spacings: optically thick, "
+                     "drawn as the surface's single scattering (no samples)\n",
+                     object.desc().name.c_str(), maxDepth, maxDepth / r);
         SampleSet set = emptySetFor(object, settings, r);
         set.parameters.scheme = SampleScheme::OpticallyThick;
         t.layers = clock.lap();
@@ -326,11 +332,13 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     RadiusSurface live;
     live.positions = stack.surface.positions;
     for (const auto& tri : stack.surface.triangles)
-        if (!density[tri[0]].culled || !density[tri[1]].culled || !density[tri[2]].culled) live.triangles.push_back(tri);
+        if (!density[tri[0]].culled || !density[tri[1]].culled || !density[tri[2]].culled)
+            live.triangles.push_back(tri);
     const bool nothingCulled = live.triangles.size() == stack.surface.triangles.size();
     if (live.triangles.empty())
         throw Error(object.desc().mesh.string(), "no point inside receives light above the cull threshold");
-    const std::vector<DiskSample> disks = fitPoissonDisks(object.desc().mesh.string(), live, relativeRadius, r, settings, t);
+    const std::vector<DiskSample> disks =
+        fitPoissonDisks(object.desc().mesh.string(), live, relativeRadius, r, settings, t);
     t.poissonDisk = clock.lap();
 
     SampleSet set = emptySetFor(object, settings, r);

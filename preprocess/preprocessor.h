@@ -11,17 +11,17 @@
 namespace lucent {
 
 struct PreprocessSettings {
-    int samples = 40000;            // target count; the mean radius r is fitted to it
-    int heuristicDirections = 64;   // d, thesis 3.2.3
-    int projectionDirections = 256; // thesis 3.3.1: 128 enough, 256 saturates
-    int shOrder = 8;                // bands: 64 coefficients (docs/accuracy.md, SH order)
+    int samples = 40000;             // target count; the mean radius r is fitted to it
+    int heuristicDirections = 64;    // d, thesis 3.2.3
+    int projectionDirections = 256;  // thesis 3.3.1: 128 enough, 256 saturates
+    int shOrder = 8;                 // bands: 64 coefficients (docs/accuracy.md, SH order)
     uint64_t seed = 1;
     // Gaussian FWHM / Poisson radius. The thesis (3.3.2) uses 1; its Gaussians then
     // barely overlap and the image shows them. 1.5 measured best on the sphere
     // (relative RMSE 11.7% against 18.3% at 1 and 13.1% at 2, 20k samples).
     double widthFactor = 1.5;
-    double layerSpacing = 0.5;      // layer offset as a fraction of r (thesis 3.2.2: "fractions of" r)
-    double cullEpsilon = 1e-3;      // receivable-light threshold, thesis 3.2.3
+    double layerSpacing = 0.5;  // layer offset as a fraction of r (thesis 3.2.2: "fractions of" r)
+    double cullEpsilon = 1e-3;  // receivable-light threshold, thesis 3.2.3
     int maxLayers = 128;
     SampleScheme scheme = SampleScheme::Lucent;
 };

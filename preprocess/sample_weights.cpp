@@ -62,7 +62,8 @@ std::vector<float> partitionOfUnityWeights(const std::vector<WeightedSample>& sa
     // turns it into int gamma_i (gamma_j + gamma_j*) / int gamma_i over all space.
     auto overlap = [&](size_t i, const std::vector<double>& v) {
         const WeightedSample& a = samples[i];
-        const glm::ivec3 c = cellOf(a.position), lo = glm::max(c - reach, glm::ivec3(0)), hi = glm::min(c + reach, dims - 1);
+        const glm::ivec3 c = cellOf(a.position), lo = glm::max(c - reach, glm::ivec3(0)),
+                         hi = glm::min(c + reach, dims - 1);
         const double si2 = double(a.width) * a.width;
         const bool thin = std::isfinite(a.thickness);
         const double own = std::max(heldInside(a), 1e-3);  // int_in k_i / int gamma_i

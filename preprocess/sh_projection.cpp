@@ -52,69 +52,74 @@ ProjectionResult projectAttenuation(const VolumeObject& object, const std::vecto
     const Rgb sigmaT = object.desc().medium.sigmaT;
     Progress progress("SH projection", positions.size());
 
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, positions.size(), 32), [&](const tbb::blocked_range<size_t>& range) {
-        const size_t D = lattice.size();
-        const size_t C = size_t(channels);
-        std::vector<double> psi(D * C), model(D * C), psiRest(D * C), modelRest(D * C);
-        std::vector<double> psiCoefficients(C * n), modelCoefficients(C * n);
-        // Coefficients of f, and f minus its truncated expansion on the lattice.
-        auto project = [&](const std::vector<double>& f, std::vector<double>& coefficients, std::vector<double>& rest) {
-            std::fill(coefficients.begin(), coefficients.end(), 0.0);
-            for (size_t d = 0; d < D; ++d)
-                for (size_t c = 0; c < C; ++c)
-                    for (int k = 0; k < n; ++k) coefficients[c * n + k] += weight * f[d * C + c] * basisTable[d * n + k];
-            for (size_t d = 0; d < D; ++d)
-                for (size_t c = 0; c < C; ++c) {
-                    double v = f[d * C + c];
-                    for (int k = 0; k < n; ++k) v -= coefficients[c * n + k] * basisTable[d * n + k];
-                    rest[d * C + c] = v;
-                }
-        };
-        for (size_t i = range.begin(); i < range.end(); ++i) {
-            for (size_t d = 0; d < D; ++d) {
-                const Rgb t = transmittance(sigmaT, settings.shadowBlockersAtRuntime
-                                                        ? object.densityPathThroughBlockers(positions[i], lattice[d])
-                                                        : object.densityPath(positions[i], lattice[d]));
-                for (size_t c = 0; c < C; ++c) psi[d * C + c] = t[c];
-            }
-            project(psi, psiCoefficients, psiRest);
-            double norm = 0.0, lost = 0.0;
-            for (size_t j = 0; j < D * C; ++j) {
-                norm += psi[j] * psi[j];
-                lost += psiRest[j] * psiRest[j];
-            }
-            // The share of the ball's transmittance that leaves the least of psi
-            // outside the SH bands (least squares on the lattice): close to 1 where
-            // the ball is a good model of the object around the sample, 0 where not.
-            BoundaryBall& ball = result.balls[i];
-            ball.share = 0.0f;
-            if (ball.valid()) {
-                const Rgb localSigmaT = object.extinction(positions[i]);
-                BoundaryBall full = ball;
-                full.share = 1.0f;
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, positions.size(), 32), [&](const tbb::blocked_range<size_t>& range) {
+            const size_t D = lattice.size();
+            const size_t C = size_t(channels);
+            std::vector<double> psi(D * C), model(D * C), psiRest(D * C), modelRest(D * C);
+            std::vector<double> psiCoefficients(C * n), modelCoefficients(C * n);
+            // Coefficients of f, and f minus its truncated expansion on the lattice.
+            auto project = [&](const std::vector<double>& f, std::vector<double>& coefficients,
+                               std::vector<double>& rest) {
+                std::fill(coefficients.begin(), coefficients.end(), 0.0);
+                for (size_t d = 0; d < D; ++d)
+                    for (size_t c = 0; c < C; ++c)
+                        for (int k = 0; k < n; ++k)
+                            coefficients[c * n + k] += weight * f[d * C + c] * basisTable[d * n + k];
+                for (size_t d = 0; d < D; ++d)
+                    for (size_t c = 0; c < C; ++c) {
+                        double v = f[d * C + c];
+                        for (int k = 0; k < n; ++k) v -= coefficients[c * n + k] * basisTable[d * n + k];
+                        rest[d * C + c] = v;
+                    }
+            };
+            for (size_t i = range.begin(); i < range.end(); ++i) {
                 for (size_t d = 0; d < D; ++d) {
-                    const Rgb t = ballTransmittance(localSigmaT, full, lattice[d]);
-                    for (size_t c = 0; c < C; ++c) model[d * C + c] = t[c];
+                    const Rgb t =
+                        transmittance(sigmaT, settings.shadowBlockersAtRuntime
+                                                  ? object.densityPathThroughBlockers(positions[i], lattice[d])
+                                                  : object.densityPath(positions[i], lattice[d]));
+                    for (size_t c = 0; c < C; ++c) psi[d * C + c] = t[c];
                 }
-                project(model, modelCoefficients, modelRest);
-                double cross = 0.0, modelNorm = 0.0;
+                project(psi, psiCoefficients, psiRest);
+                double norm = 0.0, lost = 0.0;
                 for (size_t j = 0; j < D * C; ++j) {
-                    cross += psiRest[j] * modelRest[j];
-                    modelNorm += modelRest[j] * modelRest[j];
+                    norm += psi[j] * psi[j];
+                    lost += psiRest[j] * psiRest[j];
                 }
-                if (modelNorm > 0.0) {
-                    const double share = std::clamp(cross / modelNorm, 0.0, 1.0);
-                    lost += -2.0 * share * cross + share * share * modelNorm;
-                    ball.share = float(share);
+                // The share of the ball's transmittance that leaves the least of psi
+                // outside the SH bands (least squares on the lattice): close to 1 where
+                // the ball is a good model of the object around the sample, 0 where not.
+                BoundaryBall& ball = result.balls[i];
+                ball.share = 0.0f;
+                if (ball.valid()) {
+                    const Rgb localSigmaT = object.extinction(positions[i]);
+                    BoundaryBall full = ball;
+                    full.share = 1.0f;
+                    for (size_t d = 0; d < D; ++d) {
+                        const Rgb t = ballTransmittance(localSigmaT, full, lattice[d]);
+                        for (size_t c = 0; c < C; ++c) model[d * C + c] = t[c];
+                    }
+                    project(model, modelCoefficients, modelRest);
+                    double cross = 0.0, modelNorm = 0.0;
+                    for (size_t j = 0; j < D * C; ++j) {
+                        cross += psiRest[j] * modelRest[j];
+                        modelNorm += modelRest[j] * modelRest[j];
+                    }
+                    if (modelNorm > 0.0) {
+                        const double share = std::clamp(cross / modelNorm, 0.0, 1.0);
+                        lost += -2.0 * share * cross + share * share * modelNorm;
+                        ball.share = float(share);
+                    }
                 }
+                float* out = &result.coefficients[i * C * n];
+                for (size_t k = 0; k < C * n; ++k)
+                    out[k] = float(psiCoefficients[k] -
+                                   (ball.share > 0.0f ? double(ball.share) * modelCoefficients[k] : 0.0));
+                result.truncationError[i] = norm > 0.0 ? float(std::clamp(lost / norm, 0.0, 1.0)) : 0.0f;
+                progress.advance();
             }
-            float* out = &result.coefficients[i * C * n];
-            for (size_t k = 0; k < C * n; ++k)
-                out[k] = float(psiCoefficients[k] - (ball.share > 0.0f ? double(ball.share) * modelCoefficients[k] : 0.0));
-            result.truncationError[i] = norm > 0.0 ? float(std::clamp(lost / norm, 0.0, 1.0)) : 0.0f;
-            progress.advance();
-        }
-    });
+        });
     result.raysCast = uint64_t(positions.size()) * lattice.size();
     return result;
 }

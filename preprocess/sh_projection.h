@@ -13,7 +13,7 @@
 namespace lucent {
 
 struct ProjectionSettings {
-    int order = 5;          // bands; order^2 coefficients per channel
+    int order = 5;  // bands; order^2 coefficients per channel
     int directions = 256;
     uint64_t seed = 1;
     // Project psi with the blockers filled by the medium (smooth, so few bands

@@ -9,8 +9,8 @@ namespace lucent {
 std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
     std::vector<std::string> out;
     const auto& objects = scene.objects;
-    const bool refracting = std::any_of(objects.begin(), objects.end(),
-                                        [](const VolumeObject& o) { return o.desc().medium.ior != 1.0; });
+    const bool refracting =
+        std::any_of(objects.begin(), objects.end(), [](const VolumeObject& o) { return o.desc().medium.ior != 1.0; });
     if (!refracting) return out;
     for (size_t i = 0; i < objects.size(); ++i)
         for (size_t j = i + 1; j < objects.size(); ++j) {

@@ -53,7 +53,8 @@ Vec3 sampleHenyeyGreenstein(const Vec3& dir, double g, double xi1, double xi2) {
     cosTheta = std::clamp(cosTheta, -1.0, 1.0);
     const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
     const double phi = 2.0 * kPi * xi2;
-    const Vec3 t1 = glm::normalize(std::abs(dir.x) < 0.9 ? glm::cross(dir, Vec3(1, 0, 0)) : glm::cross(dir, Vec3(0, 1, 0)));
+    const Vec3 t1 =
+        glm::normalize(std::abs(dir.x) < 0.9 ? glm::cross(dir, Vec3(1, 0, 0)) : glm::cross(dir, Vec3(0, 1, 0)));
     const Vec3 t2 = glm::cross(dir, t1);
     return glm::normalize(cosTheta * dir + sinTheta * (std::cos(phi) * t1 + std::sin(phi) * t2));
 }
@@ -221,7 +222,8 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
                         const int batch = settings.noiseTarget > 0.0 ? std::min(kNoiseBatch, spp - taken) : spp;
                         for (int s = 0; s < batch; ++s) {
                             Rgb L(0.0);
-                            if (grey_) L = radiance(rays.origin(), dir, rng, settings, -1);
+                            if (grey_)
+                                L = radiance(rays.origin(), dir, rng, settings, -1);
                             else
                                 for (int channel = 0; channel < 3; ++channel)
                                     L += radiance(rays.origin(), dir, rng, settings, channel);

@@ -35,8 +35,8 @@ struct PathSettings {
     double noiseTarget = 0.0;
     int maxScatter = 1 << 20;  // collisions gathered per path: 1 is single scattering
     uint64_t seed = 1;
-    int threads = 0;           // 0: all cores
-    bool surface = true;       // add the direct Phong surface term at the first front face
+    int threads = 0;      // 0: all cores
+    bool surface = true;  // add the direct Phong surface term at the first front face
 };
 
 class PathTracer {
@@ -44,8 +44,8 @@ public:
     PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects);
 
     struct Result {
-        Image mean;           // radiance per pixel
-        Image standardError;  // of the mean, per pixel and channel
+        Image mean;               // radiance per pixel
+        Image standardError;      // of the mean, per pixel and channel
         size_t samplesTaken = 0;  // paths over all pixels
     };
     Result render(const PathSettings& settings) const;
@@ -58,9 +58,9 @@ public:
     // along dir, with no light gathered: where it leaves the media, for tallies
     // of reflectance and transmittance (the slab tests).
     struct Exit {
-        bool escaped = false;     // false: absorbed by a blocker or stopped by maxScatter
+        bool escaped = false;  // false: absorbed by a blocker or stopped by maxScatter
         Vec3 position{0.0}, direction{0.0};
-        Rgb weight{1.0};          // the product of the albedos met
+        Rgb weight{1.0};  // the product of the albedos met
         int collisions = 0;
     };
     Exit walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
@@ -81,8 +81,7 @@ private:
     static std::optional<double> sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
                                                    const Interval& span, Rng& rng, int channel);
     // The Phong surface term at the first front face before tStop, as the reference adds it.
-    Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
-                    int channel) const;
+    Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings, int channel) const;
     // The object p lies in, or nullptr.
     const VolumeObject* containing(const Vec3& p) const;
     // radiance() and walk() in a scene with a refracting boundary (reference/refraction.h):

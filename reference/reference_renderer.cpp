@@ -42,8 +42,7 @@ Rgb integrate(const F& f, double a, double b, double relativeTolerance, double a
     Rgb values[2 * kPanels + 1];
     for (int i = 0; i <= 2 * kPanels; ++i) values[i] = f(a + 0.5 * h * i);
     Rgb coarse(0.0);
-    for (int p = 0; p < kPanels; ++p)
-        coarse += h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
+    for (int p = 0; p < kPanels; ++p) coarse += h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
     const double tol = std::max(relativeTolerance * magnitude(coarse) / kPanels, absoluteFloor);
     Rgb total(0.0);
     for (int p = 0; p < kPanels; ++p) {

@@ -70,7 +70,8 @@ PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, c
         }
     }
     const double tBlocker = blockerDistance(x, w), tBoundary = a.boundary ? a.boundary->t : kInfinity;
-    if (inside) a.collision = sampleCollisionIn(*inside, x, w, Interval{0.0, std::min(tBoundary, tBlocker)}, rng, channel);
+    if (inside)
+        a.collision = sampleCollisionIn(*inside, x, w, Interval{0.0, std::min(tBoundary, tBlocker)}, rng, channel);
     a.blocked = tBlocker < tBoundary;
     return a;
 }

@@ -162,7 +162,8 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     const std::optional<Entry> centre = ray(0), side1 = ray(1), side2 = ray(2);
     if (!centre || !side1 || !side2) return std::nullopt;
     auto onPlane = [&](const Entry& e) {
-        return e.point + glm::dot(x - e.point, centre->direction) / glm::dot(e.direction, centre->direction) * e.direction;
+        return e.point +
+               glm::dot(x - e.point, centre->direction) / glm::dot(e.direction, centre->direction) * e.direction;
     };
     const Vec3 p0 = onPlane(*centre);
     // The central ray must come back to x: the solve and the bundle agree.
@@ -173,7 +174,8 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     // power: the point light's intensity, or the directional light's irradiance (core/scene.h).
     Rgb irradiance = light.power * (transmitted * step * step / area);
     for (const VolumeObject& other : objects)
-        if (&other != &o) irradiance *= transmittance(other.desc().medium.sigmaT, other.densityPath(y, toLight, distance));
+        if (&other != &o)
+            irradiance *= transmittance(other.desc().medium.sigmaT, other.densityPath(y, toLight, distance));
     return RefractedArrival{glm::normalize(y - x), solved->inside, irradiance};
 }
 

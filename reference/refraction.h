@@ -36,7 +36,7 @@ inline Vec3 reflectedDirection(const Vec3& w, const Vec3& n) { return w - 2.0 * 
 struct BoundaryHit {
     double t;
     Vec3 point;
-    Vec3 normal;   // the unit shading normal, turned to the outside
+    Vec3 normal;    // the unit shading normal, turned to the outside
     bool entering;  // the ray goes from outside to inside (by the face's own normal)
 };
 

@@ -13,9 +13,12 @@ GlBackend parseGlBackend(const std::string& name) {
 
 std::unique_ptr<OffscreenContext> OffscreenContext::create(GlBackend backend) {
     switch (backend) {
-        case GlBackend::OSMesa: return createOsmesaContext();
-        case GlBackend::Egl: return createEglContext();
-        case GlBackend::Auto: break;
+        case GlBackend::OSMesa:
+            return createOsmesaContext();
+        case GlBackend::Egl:
+            return createEglContext();
+        case GlBackend::Auto:
+            break;
     }
     try {
         return createEglContext();

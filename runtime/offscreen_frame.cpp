@@ -60,7 +60,8 @@ Image OffscreenFrame::read() const {
     glGetTextureImage(colour_, 0, GL_RGB, GL_FLOAT, GLsizei(image.pixels.size() * sizeof(glm::vec3)),
                       image.pixels.data());
     const auto row = [&](int y) { return image.pixels.begin() + std::ptrdiff_t(y) * width_; };
-    for (int y = 0; y < height_ / 2; ++y) std::swap_ranges(row(y), row(y + 1), row(height_ - 1 - y));  // GL rows start at the bottom
+    for (int y = 0; y < height_ / 2; ++y)
+        std::swap_ranges(row(y), row(y + 1), row(height_ - 1 - y));  // GL rows start at the bottom
     for (glm::vec3& c : image.pixels)
         for (int k = 0; k < 3; ++k)
             if (!std::isfinite(c[k]) || c[k] < 0.0f) c[k] = 0.0f;

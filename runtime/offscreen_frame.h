@@ -18,7 +18,7 @@ public:
     void bindAndClear() const;  // colour to 0, depth to 1
     GlName depthTexture() const { return depth_; }
     GlName colourTexture() const { return colour_; }
-    Image read() const;         // row 0 at the top; non-finite and negative values as 0
+    Image read() const;  // row 0 at the top; non-finite and negative values as 0
 
     // Shows the frame in the current context's default framebuffer (a window's
     // back buffer) of windowWidth x windowHeight: the window cleared to black,

@@ -17,7 +17,8 @@ bool loaded = false;
 void loadGl(const char* backend, void* (*getProcAddress)(const char*)) {
     currentProc = getProcAddress;
     const int version = lucent_gladLoadGL(loadProc);
-    if (version == 0) throw Error(std::string("no usable OpenGL context: ") + backend + ": cannot load OpenGL functions");
+    if (version == 0)
+        throw Error(std::string("no usable OpenGL context: ") + backend + ": cannot load OpenGL functions");
     if (LUCENT_GLAD_VERSION_MAJOR(version) * 10 + LUCENT_GLAD_VERSION_MINOR(version) < 45)
         throw Error(std::string("no usable OpenGL context: ") + backend + ": OpenGL " +
                     std::to_string(LUCENT_GLAD_VERSION_MAJOR(version)) + "." +

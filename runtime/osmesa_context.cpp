@@ -55,11 +55,20 @@ const OsmesaApi& osmesa() {
 class OsmesaContext final : public OffscreenContext {
 public:
     OsmesaContext() : api_(osmesa()) {
-        const int attributes[] = {OSMESA_FORMAT,        OSMESA_RGBA, OSMESA_DEPTH_BITS,          24,
-                                  OSMESA_PROFILE,       OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                                  OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+        const int attributes[] = {OSMESA_FORMAT,
+                                  OSMESA_RGBA,
+                                  OSMESA_DEPTH_BITS,
+                                  24,
+                                  OSMESA_PROFILE,
+                                  OSMESA_CORE_PROFILE,
+                                  OSMESA_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  OSMESA_CONTEXT_MINOR_VERSION,
+                                  5,
+                                  0};
         context_ = api_.createContextAttribs(attributes, nullptr);
-        if (!context_) throw Error("no usable OpenGL context: osmesa: OSMesaCreateContextAttribs failed (no 4.5 core profile?)");
+        if (!context_)
+            throw Error("no usable OpenGL context: osmesa: OSMesaCreateContextAttribs failed (no 4.5 core profile?)");
         // Lucent draws into its own framebuffer objects; the default buffer is a token.
         if (!api_.makeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
             api_.destroyContext(context_);

@@ -18,8 +18,9 @@
 namespace lucent {
 
 TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleSet& samples) {
-    TranslucentObject t{&object.objectMesh(), &samples, object.desc().medium.g, object.desc().surface, {},
-                        object.desc().medium.albedo, object.placement(), &object};
+    TranslucentObject t{&object.objectMesh(),  &samples, object.desc().medium.g,
+                        object.desc().surface, {},       object.desc().medium.albedo,
+                        object.placement(),    &object};
     for (const TriangleMesh& blocker : object.objectBlockerMeshes()) t.blockers.push_back(&blocker);
     return t;
 }
@@ -73,8 +74,9 @@ double sampleRadiusPixels(const std::vector<GpuObject>& objects, const ViewSetup
 ScatteringRenderer::ScatteringRenderer(double cutoff) {
     if (!(cutoff > 0.0 && cutoff < 1.0)) throw Error("Gaussian cut-off must lie in (0, 1)");
     if (!glLoaded())
-        throw Error("ScatteringRenderer: Lucent's OpenGL functions are not loaded: call lucent::loadGl with the "
-                    "context current first (runtime/opengl.h)");
+        throw Error(
+            "ScatteringRenderer: Lucent's OpenGL functions are not loaded: call lucent::loadGl with the "
+            "context current first (runtime/opengl.h)");
     impl_ = std::make_unique<Impl>(cutoff);
 }
 
@@ -105,7 +107,8 @@ size_t ScatteringRenderer::objectCount() const { return impl_->objects.size(); }
 namespace {
 void checkIndex(const char* call, size_t index, size_t count) {
     if (index >= count)
-        throw Error(std::string(call) + ": no object " + std::to_string(index) + " (" + std::to_string(count) + " added)");
+        throw Error(std::string(call) + ": no object " + std::to_string(index) + " (" + std::to_string(count) +
+                    " added)");
 }
 }  // namespace
 
@@ -139,7 +142,8 @@ void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement)
     checkIndex("setPlacement", index, impl_->objects.size());
     bool finite = placement.scale > 0.0 && std::isfinite(placement.scale) && isFinite(placement.translation);
     for (int c = 0; c < 3; ++c) finite = finite && isFinite(placement.rotation[c]);
-    if (!finite) throw Error("setPlacement: the scale must be positive and finite, the rotation and translation finite");
+    if (!finite)
+        throw Error("setPlacement: the scale must be positive and finite, the rotation and translation finite");
     GpuObject& o = impl_->objects[index];
     if (placement == o.placement) return;
     o.placement = placement;
@@ -164,8 +168,10 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     std::vector<gpu::Light> packed;
     packed.reserve(kMaxLights);
     for (const Light& l : lights) {
-        if (l.type == Light::Type::Point) packed.push_back({glm::vec4(glm::vec3(l.position), 1.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
-        else packed.push_back({glm::vec4(glm::vec3(l.direction), 0.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
+        if (l.type == Light::Type::Point)
+            packed.push_back({glm::vec4(glm::vec3(l.position), 1.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
+        else
+            packed.push_back({glm::vec4(glm::vec3(l.direction), 0.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
     }
     GpuLights& g = impl_->lights;
     if (g.buffer) glDeleteBuffers(1, &g.buffer);

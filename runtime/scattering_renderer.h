@@ -28,8 +28,8 @@ struct TranslucentObject {
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
-    Rgb albedo{0.0};                     // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
-    Similarity placement;                // where the mesh, blockers and samples stand in the world
+    Rgb albedo{0.0};       // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
+    Similarity placement;  // where the mesh, blockers and samples stand in the world
     // The object's medium for tracing the light to each sample (DrawOptions::tracedLight),
     // or null: the samples' SH alone. Must outlive the renderer.
     const VolumeObject* volume = nullptr;

@@ -75,10 +75,10 @@ SsMethod::~SsMethod() = default;  // waits for retiring_
 void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
     const SessionKey key = sessionKey(desc, settings);
     prepared_ = std::make_unique<Prepared>(Prepared{key, std::async(std::launch::async, [key] {
-                                                          std::unique_ptr<GlSession> session = openSession(key);
-                                                          session->context->release();
-                                                          return session;
-                                                      })});
+                                                        std::unique_ptr<GlSession> session = openSession(key);
+                                                        session->context->release();
+                                                        return session;
+                                                    })});
 }
 
 std::vector<std::string> SsMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
@@ -105,7 +105,8 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
             const double depth = glm::length(o.boundary().closestPoint(l.position) - l.position);
             if (inside || depth < spacing)
                 out.push_back("light " + std::to_string(j) + " lies " + (inside ? "inside" : "at the surface of") +
-                              " object '" + name + "': --method ss averages its 1/r^2 peak over the Gaussians there "
+                              " object '" + name +
+                              "': --method ss averages its 1/r^2 peak over the Gaussians there "
                               "(0.34 to 1.23 of the light measured; --method reference is exact)");
         }
         // The samples' SH hold each object's own attenuation only: light that crosses
@@ -123,7 +124,8 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
                 const Vec3 to = mine.center();
                 const Vec3 from = l.type == Light::Type::Point ? l.position : to - 1e6 * reach * l.direction;
                 const Vec3 d = to - from;
-                const double t = std::clamp(glm::dot(other.center() - from, d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
+                const double t =
+                    std::clamp(glm::dot(other.center() - from, d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
                 if (glm::length(from + t * d - other.center()) < reach && t > 0.0 && t < 1.0)
                     out.push_back("object '" + scene.objects[k].desc().name + "' may lie between light " +
                                   std::to_string(j) + " and object '" + name +
@@ -190,8 +192,10 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
             } catch (const Error&) {
             }
         });
-    if (session) session->context->makeCurrent();
-    else session = openSession(sessionKey(scene.desc, settings));
+    if (session)
+        session->context->makeCurrent();
+    else
+        session = openSession(sessionKey(scene.desc, settings));
     backend = session->context->backendName();
     const ViewSetup view = viewSetupFor(scene.desc.camera, scene.bounds());
     const OffscreenFrame& frame = *session->frame;

@@ -16,8 +16,8 @@ ViewSetup viewSetupFor(const Camera& camera, const Bounds3& sceneBounds) {
     const double distance = glm::length(sceneBounds.center() - camera.position);
     const double farPlane = distance + 2.0 * radius + 1e-6;
     const double nearPlane = std::max(distance - 2.0 * radius, farPlane * 1e-5);
-    v.projection = glm::perspective(glm::radians(camera.fovYDegrees), double(camera.width) / camera.height,
-                                    nearPlane, farPlane);
+    v.projection =
+        glm::perspective(glm::radians(camera.fovYDegrees), double(camera.width) / camera.height, nearPlane, farPlane);
     return v;
 }
 

@@ -32,7 +32,7 @@ public:
         Camera c = camera_;
         c.up = Vec3(0, 1, 0);
         c.position = camera_.target + distance_ * Vec3(std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_),
-                                                        std::cos(pitch_) * std::cos(yaw_));
+                                                       std::cos(pitch_) * std::cos(yaw_));
         return c;
     }
     void resize(int width, int height) {

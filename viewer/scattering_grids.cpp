@@ -131,7 +131,8 @@ void ScatteringGrids::iterate(ViewerState& state, ScatteringRenderer& renderer) 
         }
         if (eye != s.bakedFor) {
             renderer.clearScatteringGrids();
-            for (const hybrid::MdomSolution& solution : s.mdomSolutions) renderer.addScatteringGrid(solution.towards(eye));
+            for (const hybrid::MdomSolution& solution : s.mdomSolutions)
+                renderer.addScatteringGrid(solution.towards(eye));
             s.bakedFor = eye;
         }
     } catch (const Error& e) {

@@ -94,8 +94,10 @@ void lightsPanel(ViewerState& state) {
         glm::vec3 position(point ? light.position : light.direction);
         glm::vec3 power(light.power);
         if (ImGui::DragFloat3(point ? "position" : "direction", glm::value_ptr(position), 0.02f)) {
-            if (point) light.position = Vec3(position);
-            else if (glm::length(position) > 0.0f) light.direction = glm::normalize(Vec3(position));
+            if (point)
+                light.position = Vec3(position);
+            else if (glm::length(position) > 0.0f)
+                light.direction = glm::normalize(Vec3(position));
             state.lightsChanged = true;
         }
         float peak = std::max({power.r, power.g, power.b, 1e-6f});
@@ -177,12 +179,12 @@ Bounds3 placedBounds(const LoadedScene& loaded, const std::vector<Similarity>& p
     for (size_t i = 0; i < loaded.objects.size(); ++i) {
         const Bounds3 own = loaded.objects[i].objectMesh().bounds();
         for (int corner = 0; corner < 8; ++corner)
-            bounds.extend(placements[i].point(Vec3(corner & 1 ? own.max.x : own.min.x, corner & 2 ? own.max.y : own.min.y,
-                                                   corner & 4 ? own.max.z : own.min.z)));
+            bounds.extend(
+                placements[i].point(Vec3(corner & 1 ? own.max.x : own.min.x, corner & 2 ? own.max.y : own.min.y,
+                                         corner & 4 ? own.max.z : own.min.z)));
     }
     return bounds;
 }
-
 
 // The control panel's width in pixels, docked at the left of the window beside
 // the view (wide enough for its labels).
@@ -195,8 +197,12 @@ class Viewer {
 public:
     Viewer(const SceneDesc& scene, const ViewerOptions& options, std::vector<std::string> script,
            const LoadedScene& loaded, std::string methodName)
-        : options_(options), loaded_(loaded), methodName_(std::move(methodName)), script_(std::move(script)),
-          state_(scene), bounds_(loaded.bounds()),
+        : options_(options),
+          loaded_(loaded),
+          methodName_(std::move(methodName)),
+          script_(std::move(script)),
+          state_(scene),
+          bounds_(loaded.bounds()),
           window_((options.width ? options.width : scene.camera.width) + kPanelWidth,
                   options.height ? options.height : scene.camera.height),
           grids_(loaded) {
@@ -241,7 +247,8 @@ private:
         if (state_.waiting && !grids_.solving()) state_.waiting = false;
         if (state_.waiting) return;  // a script's `wait`: the next line when the solve is done
         if (scriptLine_ < script_.size()) {
-            applyScriptLine(state_, script_[scriptLine_], options_.script.string() + ":" + std::to_string(scriptLine_ + 1));
+            applyScriptLine(state_, script_[scriptLine_],
+                            options_.script.string() + ":" + std::to_string(scriptLine_ + 1));
             ++scriptLine_;
         } else if (!options_.screenshot.empty()) {
             state_.screenshots.push_back({options_.screenshot.string(), false});
@@ -257,8 +264,10 @@ private:
         glfwGetCursorPos(window, &mouse.x, &mouse.y);
         if (!ImGui::GetIO().WantCaptureMouse) {
             const glm::dvec2 delta = mouse - lastMouse_;
-            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) state_.camera.orbit(-0.3 * delta.x, 0.3 * delta.y);
-            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) state_.camera.pan(-1e-3 * delta.x, 1e-3 * delta.y);
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+                state_.camera.orbit(-0.3 * delta.x, 0.3 * delta.y);
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+                state_.camera.pan(-1e-3 * delta.x, 1e-3 * delta.y);
             const float wheel = ImGui::GetIO().MouseWheel;
             if (wheel != 0.0f) state_.camera.zoom(std::pow(0.9, wheel));
         }
@@ -300,7 +309,8 @@ private:
         drawOptions.scattering = state_.scattering;
         drawOptions.extinctionScale = state_.extinctionScale;
         drawOptions.tracedLight = state_.tracedLight;
-        frameMs_ = 1e3 * timeGlWork([&] { renderer_.draw(viewSetupFor(state_.camera.camera(), bounds_), drawOptions); });
+        frameMs_ =
+            1e3 * timeGlWork([&] { renderer_.draw(viewSetupFor(state_.camera.camera(), bounds_), drawOptions); });
         drawTimes_.push_back(frameMs_);
         if (std::isnan(state_.exposureStops)) state_.exposureStops = std::log2(autoExposure(frame_->read()));
     }
@@ -370,7 +380,8 @@ private:
     void printSummary() const {
         if (loopTimes_.empty()) return;
         const double shown = median(loopTimes_);
-        std::fprintf(stderr, "lucent: view: %zu frames at %dx%d: median %.1f ms to draw, %.1f ms per frame shown (%.1f fps)\n",
+        std::fprintf(stderr,
+                     "lucent: view: %zu frames at %dx%d: median %.1f ms to draw, %.1f ms per frame shown (%.1f fps)\n",
                      loopTimes_.size(), frameWidth_, frameHeight_, median(drawTimes_), shown, 1e3 / shown);
     }
 

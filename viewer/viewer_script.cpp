@@ -91,10 +91,14 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         Light& light = lightAt(state, in, where);
         std::string what;
         in >> what;
-        if (what == "position") light.position = readVec3(in, where, "position");
-        else if (what == "direction") light.direction = readDirection(in, where);
-        else if (what == "colour" || what == "color") light.power = readColour(in, where);
-        else throw Error(where, "light property must be position, direction or colour");
+        if (what == "position")
+            light.position = readVec3(in, where, "position");
+        else if (what == "direction")
+            light.direction = readDirection(in, where);
+        else if (what == "colour" || what == "color")
+            light.power = readColour(in, where);
+        else
+            throw Error(where, "light property must be position, direction or colour");
         state.lightsChanged = true;
     } else if (command == "add") {
         std::string type;
@@ -159,10 +163,14 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
     } else if (command == "multiple") {
         std::string which;
         in >> which;
-        if (which == "on" || which == "lbl") state.multiple = ViewerState::Multiple::Lbl;
-        else if (which == "mdom") state.multiple = ViewerState::Multiple::Mdom;
-        else if (which == "off") state.multiple = ViewerState::Multiple::Off;
-        else throw Error(where, "multiple needs on, off, lbl or mdom");
+        if (which == "on" || which == "lbl")
+            state.multiple = ViewerState::Multiple::Lbl;
+        else if (which == "mdom")
+            state.multiple = ViewerState::Multiple::Mdom;
+        else if (which == "off")
+            state.multiple = ViewerState::Multiple::Off;
+        else
+            throw Error(where, "multiple needs on, off, lbl or mdom");
     } else if (command == "wait") {
         state.waiting = true;
     } else if (command == "scattering") {

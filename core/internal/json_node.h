@@ -26,7 +26,8 @@ nlohmann::json parseStrictJson(const std::string& text, const std::string& fileN
 // read, so that any key left over (a typo) is reported.
 class Node {
 public:
-    Node(const Json& json, std::string path, const std::string& file) : json_(json), path_(std::move(path)), file_(file) {}
+    Node(const Json& json, std::string path, const std::string& file)
+        : json_(json), path_(std::move(path)), file_(file) {}
 
     [[noreturn]] void fail(const std::string& problem) const {
         throw Error(file_, (path_.empty() ? std::string("/") : path_) + ": " + problem);
@@ -92,7 +93,8 @@ public:
     // A point of the scene: each coordinate within +-kMaxCoordinate.
     Vec3 point() const {
         if (!json_.is_array() || json_.size() != 3) fail("must be an array of 3 numbers");
-        return Vec3(element(0).number(-kMaxCoordinate, kMaxCoordinate), element(1).number(-kMaxCoordinate, kMaxCoordinate),
+        return Vec3(element(0).number(-kMaxCoordinate, kMaxCoordinate),
+                    element(1).number(-kMaxCoordinate, kMaxCoordinate),
                     element(2).number(-kMaxCoordinate, kMaxCoordinate));
     }
     // A direction: not zero, returned unit length however large its components

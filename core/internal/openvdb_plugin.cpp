@@ -9,8 +9,8 @@ const char kAnchor = 0;  // an address inside liblucent_core
 }  // namespace
 
 const CoreOpenVdbPlugin& coreOpenVdbPlugin() {
-    static const auto* table =
-        static_cast<const CoreOpenVdbPlugin*>(pluginTable("liblucent_core_openvdb.so", "lucentCoreOpenVdbPlugin", &kAnchor));
+    static const auto* table = static_cast<const CoreOpenVdbPlugin*>(
+        pluginTable("liblucent_core_openvdb.so", "lucentCoreOpenVdbPlugin", &kAnchor));
     return *table;
 }
 

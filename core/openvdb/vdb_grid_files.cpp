@@ -19,11 +19,13 @@ DenseFloatGrid readFloatGrid(const std::filesystem::path& file, const std::strin
     const uint64_t fileSize = regularFileSize(file, "OpenVDB file");
     openvdb::initialize();
     // OpenVDB asserts on some corrupt files (fuzz/grid_fuzzer.cpp): read it in a child first.
-    const std::string death = deathInChild([&] {
-        openvdb::io::File vdb(name);
-        vdb.open();
-        vdb.readGrid(gridName);
-    }, 5.0 + double(fileSize) / 2e6);
+    const std::string death = deathInChild(
+        [&] {
+            openvdb::io::File vdb(name);
+            vdb.open();
+            vdb.readGrid(gridName);
+        },
+        5.0 + double(fileSize) / 2e6);
     if (!death.empty()) throw Error(name, "corrupt OpenVDB file (the OpenVDB reader died on it: " + death + ")");
     openvdb::FloatGrid::Ptr grid;
     try {

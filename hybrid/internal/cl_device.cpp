@@ -13,15 +13,32 @@ namespace lucent::hybrid {
 std::string clErrorText(cl_int code) {
     const char* name = nullptr;
     switch (code) {
-        case CL_DEVICE_NOT_FOUND: name = "CL_DEVICE_NOT_FOUND"; break;
-        case CL_OUT_OF_RESOURCES: name = "CL_OUT_OF_RESOURCES"; break;
-        case CL_OUT_OF_HOST_MEMORY: name = "CL_OUT_OF_HOST_MEMORY"; break;
-        case CL_MEM_OBJECT_ALLOCATION_FAILURE: name = "CL_MEM_OBJECT_ALLOCATION_FAILURE"; break;
-        case CL_BUILD_PROGRAM_FAILURE: name = "CL_BUILD_PROGRAM_FAILURE"; break;
-        case CL_INVALID_WORK_GROUP_SIZE: name = "CL_INVALID_WORK_GROUP_SIZE"; break;
-        case CL_INVALID_BUFFER_SIZE: name = "CL_INVALID_BUFFER_SIZE"; break;
-        case -1001: name = "CL_PLATFORM_NOT_FOUND_KHR"; break;
-        default: break;
+        case CL_DEVICE_NOT_FOUND:
+            name = "CL_DEVICE_NOT_FOUND";
+            break;
+        case CL_OUT_OF_RESOURCES:
+            name = "CL_OUT_OF_RESOURCES";
+            break;
+        case CL_OUT_OF_HOST_MEMORY:
+            name = "CL_OUT_OF_HOST_MEMORY";
+            break;
+        case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+            name = "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+            break;
+        case CL_BUILD_PROGRAM_FAILURE:
+            name = "CL_BUILD_PROGRAM_FAILURE";
+            break;
+        case CL_INVALID_WORK_GROUP_SIZE:
+            name = "CL_INVALID_WORK_GROUP_SIZE";
+            break;
+        case CL_INVALID_BUFFER_SIZE:
+            name = "CL_INVALID_BUFFER_SIZE";
+            break;
+        case -1001:
+            name = "CL_PLATFORM_NOT_FOUND_KHR";
+            break;
+        default:
+            break;
     }
     return (name ? std::string(name) + " " : std::string("OpenCL error ")) + "(" + std::to_string(code) + ")";
 }
@@ -72,8 +89,7 @@ ClDevice::ClDevice() {
     device = devices.front();
     const std::string extensions = device.getInfo<CL_DEVICE_EXTENSIONS>();
     if (extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
-        throw Error("OpenCL device '" + name() +
-                    "' lacks cl_khr_int64_base_atomics, which the photon deposits need");
+        throw Error("OpenCL device '" + name() + "' lacks cl_khr_int64_base_atomics, which the photon deposits need");
     try {
         context = cl::Context(device);
         marchQueue = cl::CommandQueue(context, device);
@@ -100,8 +116,8 @@ cl::Program ClDevice::buildSource(const std::string& source, const std::string& 
         } catch (const cl::Error&) {
         }
         while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
-        throw Error("OpenCL kernels " + what + " did not build on '" + name() + "' (" + clErrorText(e.err()) +
-                    "):\n" + log);
+        throw Error("OpenCL kernels " + what + " did not build on '" + name() + "' (" + clErrorText(e.err()) + "):\n" +
+                    log);
     }
     return program;
 }
@@ -142,8 +158,8 @@ void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string
     auto mib = [](size_t b) { return std::to_string((b + (1 << 20) - 1) >> 20) + " MiB"; };
     if (bytes > total || largestBuffer > single)
         throw Error("OpenCL device '" + name() + "' cannot hold " + what + ": it needs " + mib(bytes) +
-                    " (largest buffer " + mib(largestBuffer) + "), the device has " + mib(total) + " (" +
-                    mib(single) + " per buffer); use a smaller grid (--grid)");
+                    " (largest buffer " + mib(largestBuffer) + "), the device has " + mib(total) + " (" + mib(single) +
+                    " per buffer); use a smaller grid (--grid)");
     const bool shared = device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE ||
                         device.getInfo<CL_DEVICE_TYPE>() == CL_DEVICE_TYPE_CPU;
     if (!shared) return;

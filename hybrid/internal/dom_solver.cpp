@@ -49,8 +49,8 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     const int k = ordinates_.perOctant, n = 8 * k;
     // More moments than directions would be aliased: the directions cannot tell them apart.
     if (moments_ > n)
-        throw Error("discrete ordinates: " + std::to_string(moments_) + " moments need at least as many directions, not " +
-                    std::to_string(n));
+        throw Error("discrete ordinates: " + std::to_string(moments_) +
+                    " moments need at least as many directions, not " + std::to_string(n));
     program_ = device.buildSource("#define DOM_K " + std::to_string(k) + "\n#define DOM_BANDS " +
                                       std::to_string(bands) + "\n#define DOM_M " + std::to_string(moments_) +
                                       "\n#line 1\n" + hybridKernel("dom_sweep.cl"),

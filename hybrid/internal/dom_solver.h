@@ -20,7 +20,7 @@ namespace lucent::hybrid {
 
 struct DomGrid {
     std::array<int, 3> dims{0, 0, 0};
-    Vec3 edges{1.0};                   // a voxel's edge lengths
+    Vec3 edges{1.0};                    // a voxel's edge lengths
     std::vector<glm::vec4> extinction;  // sigma_t* (delta-M scaled), rgb; a: 1 where the flux is wanted, else 0
                                         // (a voxel with a = 0 must have no source)
     std::vector<glm::vec4> scattering;  // sigma_s*, rgb
@@ -100,8 +100,8 @@ private:
     Rgb total_power_{0.0}, previous_power_{0.0};
     cl::Program program_;
     cl::Kernel sweep_, scatter_, power_;
-    cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2],
-        ylm_, weights_, crossing_, partial_;
+    cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2], ylm_,
+        weights_, crossing_, partial_;
 };
 
 }  // namespace lucent::hybrid

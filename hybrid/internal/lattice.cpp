@@ -17,9 +17,17 @@ size_t Lattice::bytesFor(size_t voxels, bool blocked) {
 
 Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxelisation& grid, const Rgb& albedo,
                  bool blocked, int subSteps, double g)
-    : grid_(grid), albedo_(albedo), latticeExtinctionScale_(Rgb(1.0) - albedo * g), blocked_(blocked), subSteps_(std::max(1, subSteps)), voxels_(grid.shape.count()),
-      collide_(program, "lattice_collide"), stream_(program, "lattice_stream"), blocks_(program, "lattice_blocks"),
-      probes_(program, "gather_probes"), finish_(program, "finish") {
+    : grid_(grid),
+      albedo_(albedo),
+      latticeExtinctionScale_(Rgb(1.0) - albedo * g),
+      blocked_(blocked),
+      subSteps_(std::max(1, subSteps)),
+      voxels_(grid.shape.count()),
+      collide_(program, "lattice_collide"),
+      stream_(program, "lattice_stream"),
+      blocks_(program, "lattice_blocks"),
+      probes_(program, "gather_probes"),
+      finish_(program, "finish") {
     const cl::Context& cx = device.context;
     const size_t v4 = sizeof(glm::vec4);
     f_ = zeroBuffer(cx, 6 * voxels_ * v4);
@@ -65,16 +73,19 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
                 for (int z = 0; z < kBlock && !any; ++z)
                     for (int y = 0; y < kBlock && !any; ++y)
                         for (int x = 0; x < kBlock && !any; ++x) {
-                            const size_t at = (i * kBlock + x) + d[0] * ((j * kBlock + y) + size_t(d[1]) * (k * kBlock + z));
+                            const size_t at =
+                                (i * kBlock + x) + d[0] * ((j * kBlock + y) + size_t(d[1]) * (k * kBlock + z));
                             any = grid.material[at].a != 0.0f;
                         }
                 const int b = i + bx * (j + by * k);
                 if (any) active.push_back(b), isActive[b] = 1;
             }
     activeCount_ = int(active.size());
-    active_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(1, active.size()) * sizeof(cl_int),
-                         active.empty() ? isActive.data() : active.data());
-    blockActive_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, isActive.size() * sizeof(cl_int), isActive.data());
+    active_ =
+        cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(1, active.size()) * sizeof(cl_int),
+                   active.empty() ? isActive.data() : active.data());
+    blockActive_ =
+        cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, isActive.size() * sizeof(cl_int), isActive.data());
     for (cl::Buffer& b : interface_) b = zeroBuffer(cx, isActive.size() * kInterfaceFloat4PerBlock * v4);
     blocks_.setArg(0, f_);
     blocks_.setArg(1, source_);
@@ -116,7 +127,8 @@ void Lattice::chooseProbes(int count) {
     probeCount_ = int(probes.size());
     if (probes.empty()) return;
     const cl::Context cx = collide_.getInfo<CL_KERNEL_CONTEXT>();
-    probeIndex_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, probes.size() * sizeof(cl_int), probes.data());
+    probeIndex_ =
+        cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, probes.size() * sizeof(cl_int), probes.data());
     probeOut_ = cl::Buffer(cx, CL_MEM_READ_WRITE, probes.size() * sizeof(glm::vec4));
     probes_.setArg(0, fluence_);
     probes_.setArg(1, probeIndex_);
@@ -148,7 +160,9 @@ LatticeTotals Lattice::totals(cl::CommandQueue& queue) {
     add(t.escaped, read(queue, escaped_, voxels_));
     add(t.inFlight, read(queue, f_, 6 * voxels_));
     add(t.inFlight, read(queue, source_, voxels_));
-    if (blocked_) add(t.inFlight, read(queue, interface_[launches_ % 2], interface_[0].getInfo<CL_MEM_SIZE>() / sizeof(glm::vec4)));
+    if (blocked_)
+        add(t.inFlight,
+            read(queue, interface_[launches_ % 2], interface_[0].getInfo<CL_MEM_SIZE>() / sizeof(glm::vec4)));
     return t;
 }
 

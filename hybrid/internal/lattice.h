@@ -51,7 +51,7 @@ private:
     std::vector<glm::vec4> read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count);
 
     const Voxelisation& grid_;
-    Rgb albedo_;                // of the medium: what finish scatters towards the eye
+    Rgb albedo_;                  // of the medium: what finish scatters towards the eye
     Rgb latticeExtinctionScale_;  // sigma'_t / sigma_t = 1 - albedo g
     cl::Buffer trueMaterial_;     // sigma_t as the medium has it (material_ holds sigma'_t)
     bool blocked_;

@@ -6,13 +6,17 @@ namespace lucent::hybrid {
 
 PhotonMarcher::PhotonMarcher(const ClDevice& device, const cl::Program& program, const Voxelisation& grid,
                              const Rgb& albedo, const RayMap& rays, double step)
-    : march_(program, "march"), transfer_(program, "transfer"), rayCount_(rays.rays.size()),
-      voxels_(grid.shape.count()), emitted_(rays.emitted) {
+    : march_(program, "march"),
+      transfer_(program, "transfer"),
+      rayCount_(rays.rays.size()),
+      voxels_(grid.shape.count()),
+      emitted_(rays.emitted) {
     const cl::Context& cx = device.context;
     // A channel's whole emitted power is 2^kFixedBits units, so sums cannot overflow 64 bits.
     for (int c = 0; c < 3; ++c)
         unitsPerWatt_[c] = emitted_[c] > 0.0 ? std::ldexp(1.0, clshared::kFixedBits) / emitted_[c] : 0.0;
-    rays_ = cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, std::max<size_t>(1, rayCount_) * sizeof(clshared::PhotonRay),
+    rays_ = cl::Buffer(cx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                       std::max<size_t>(1, rayCount_) * sizeof(clshared::PhotonRay),
                        rayCount_ ? const_cast<clshared::PhotonRay*>(rays.rays.data()) : nullptr);
     if (!rayCount_) rays_ = cl::Buffer(cx, CL_MEM_READ_WRITE, sizeof(clshared::PhotonRay));
     material_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * sizeof(glm::vec4),
@@ -31,7 +35,8 @@ PhotonMarcher::PhotonMarcher(const ClDevice& device, const cl::Program& program,
     march_.setArg(2, refraction_);
     march_.setArg(4, tallies_);
     march_.setArg(5, cl_int4{{d[0], d[1], d[2], 0}});
-    march_.setArg(6, cl_float4{{float(grid.shape.origin.x), float(grid.shape.origin.y), float(grid.shape.origin.z), 0.0f}});
+    march_.setArg(
+        6, cl_float4{{float(grid.shape.origin.x), float(grid.shape.origin.y), float(grid.shape.origin.z), 0.0f}});
     march_.setArg(7, float(grid.shape.voxel));
     march_.setArg(8, float(step));
     march_.setArg(10, float4Of(albedo));

@@ -25,7 +25,7 @@ struct SourceCell {
 struct Gather {
     const DomGrid& grid;
     int bands, moments;
-    Cell near{};  // cells per axis within which a pair is near
+    Cell near{};                              // cells per axis within which a pair is near
     std::array<std::vector<double>, 8> sign;  // Y_m of a direction mirrored in the axes of bit mask / Y_m of it
 
     size_t index(const Cell& c) const { return grid.index()(c); }
@@ -199,9 +199,8 @@ std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<dou
                 }
     const std::vector<NearKey> keys(needed.begin(), needed.end());
     std::vector<std::vector<double>> kernels(keys.size());
-    tbb::parallel_for(size_t(0), keys.size(), [&](size_t i) {
-        kernels[i] = nearKernel(keys[i].d, sigmaOf(keys[i]), grid.edges, bands);
-    });
+    tbb::parallel_for(size_t(0), keys.size(),
+                      [&](size_t i) { kernels[i] = nearKernel(keys[i].d, sigmaOf(keys[i]), grid.edges, bands); });
     std::map<NearKey, const std::vector<double>*> kernelOf;
     for (size_t i = 0; i < keys.size(); ++i) kernelOf[keys[i]] = &kernels[i];
 

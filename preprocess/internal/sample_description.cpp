@@ -61,7 +61,7 @@ constexpr double kMostWidening = 2.0;
 // boundary point through it (a plate's thickness, a tube's diameter), or
 // infinity when the far side lies more than reach behind position.
 double regionThickness(const VolumeObject& object, const std::optional<DensitySlab>& slab, const Vec3& nearest,
-                      const Vec3& position, double reach) {
+                       const Vec3& position, double reach) {
     const Vec3 away = position - nearest;
     const double depth = glm::length(away);
     if (!(depth > 0.0)) return kInfinity;
@@ -133,7 +133,8 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
                 }
                 const Vec3 nearest = object.closestRegionBoundary(d.position);
                 image = 2.0 * nearest - d.position;
-                const double across = regionThickness(object, slab, nearest, d.position, kThinReach * kMostWidening * width);
+                const double across =
+                    regionThickness(object, slab, nearest, d.position, kThinReach * kMostWidening * width);
                 // A plate or a tube a few radii across holds few layers: a view ray
                 // crosses the sum of the Gaussians at nearly one point of it, and its
                 // ripple shows as grain. Wider Gaussians smooth it; the weights count

@@ -72,7 +72,8 @@ VdbHeuristicField::VdbHeuristicField(const VolumeObject& object, const VdbDistan
                     moment += f * w;
                     zeroth += f;
                 }
-                it.setValue(openvdb::Vec3s(float(weight * moment.x), float(weight * moment.y), float(weight * moment.z)));
+                it.setValue(
+                    openvdb::Vec3s(float(weight * moment.x), float(weight * moment.y), float(weight * moment.z)));
                 leafS[it.pos()] = float(weight * zeroth / (4.0 * kPi));
             }
             progress.advance();

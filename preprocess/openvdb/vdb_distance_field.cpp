@@ -24,8 +24,8 @@ VdbDistanceField::VdbDistanceField(const TriangleMesh& boundary, double voxelSiz
     // cubes sees the sign change there and central differences have neighbours.
     const float interiorBand = float(std::ceil(deepest / voxelSize) + 3.0);
     const auto transform = openvdb::math::Transform::createLinearTransform(voxelSize / scale());
-    grid_ = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, noQuads,
-                                                                         3.0f, interiorBand);
+    grid_ = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, noQuads, 3.0f,
+                                                                          interiorBand);
 }
 
 std::vector<OffsetLayer> VdbDistanceField::offsetLayers(const std::vector<double>& depths) const {

@@ -33,7 +33,8 @@ std::vector<glm::mat4> blockerShadowViews(const std::vector<Light>& lights, cons
         if (l.type == Light::Type::Point) {
             const glm::vec3 eye(l.position);
             const float farPlane = glm::length(centre - eye) + radius;
-            const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, farPlane * 1e-5f, farPlane * 1.01f);
+            const glm::mat4 projection =
+                glm::perspective(glm::radians(90.0f), 1.0f, farPlane * 1e-5f, farPlane * 1.01f);
             for (int face = 0; face < 6; ++face) views[6 * j + face] = projection * cubeFaceView(eye, face);
         } else {
             // Looking along the light from outside the sphere; the map stores dot(x, d).

@@ -50,8 +50,9 @@ void BlockerShadows::render(const std::vector<Light>& lights, const Similarity& 
     }
     Bounds3 world;  // the placed box's corners bound the placed blockers
     for (int corner = 0; corner < 8; ++corner)
-        world.extend(placement.point(Vec3(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
-                                          corner & 4 ? bounds_.max.z : bounds_.min.z)));
+        world.extend(
+            placement.point(Vec3(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
+                                 corner & 4 ? bounds_.max.z : bounds_.min.z)));
     const std::vector<glm::mat4> views = blockerShadowViews(lights, world);
     glNamedBufferSubData(views_, 0, GLsizeiptr(views.size() * sizeof(glm::mat4)), views.data());
 
@@ -75,7 +76,7 @@ void BlockerShadows::render(const std::vector<Light>& lights, const Similarity& 
             glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw Error("OpenGL: the blocker shadow framebuffer is incomplete");
         const glm::vec4 packed = l.type == Light::Type::Point ? glm::vec4(glm::vec3(l.position), 1.0f)
-                                                               : glm::vec4(glm::normalize(glm::vec3(l.direction)), 0.0f);
+                                                              : glm::vec4(glm::normalize(glm::vec3(l.direction)), 0.0f);
         glUniform4fv(program_.uniform("light"), 1, glm::value_ptr(packed));
         glUniformMatrix4fv(program_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(views[size_t(layer)]));
         for (const auto& mesh : meshes_) mesh->draw();

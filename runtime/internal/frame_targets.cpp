@@ -83,7 +83,7 @@ void FrameTargets::drawPeeled(const FrameContext& frame, bool firstIntervalOnly)
         for (int k = 0; k < gpu::kMaxRaySegments; ++k)
             for (const bool exits : {false, true}) {
                 if (!exits && k == 0) continue;  // the nearest front face is drawn above
-                if (k >= intervals) continue;  // no such interval: segment.frag reads none
+                if (k >= intervals) continue;    // no such interval: segment.frag reads none
                 TextureTarget& layer = exits ? backLayers_[k] : frontLayers_[k];
                 layer.clearDepth(1.0f);
                 glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layer.framebuffer());
@@ -121,10 +121,10 @@ void FrameTargets::drawInOnePass(const FrameContext& frame, const ViewSetup& vie
     }
     // Nothing yet: the nearest faces at depth 1, the farthest at 0 (segment.frag's "none").
     const GLuint one = std::bit_cast<GLuint>(1.0f), zero = 0;
-    glClearTexSubImage(layerArray_, 0, 0, 0, 0, view.width, view.height, kLayers - 1, GL_RED_INTEGER,
-                       GL_UNSIGNED_INT, &one);
-    glClearTexSubImage(layerArray_, 0, 0, 0, kLayers - 1, view.width, view.height, 1, GL_RED_INTEGER,
-                       GL_UNSIGNED_INT, &zero);
+    glClearTexSubImage(layerArray_, 0, 0, 0, 0, view.width, view.height, kLayers - 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                       &one);
+    glClearTexSubImage(layerArray_, 0, 0, 0, kLayers - 1, view.width, view.height, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                       &zero);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, layerFramebuffer_);
     glDisable(GL_CULL_FACE);  // the fragment tells front from back (gl_FrontFacing)
     glDisable(GL_DEPTH_TEST);
@@ -252,4 +252,3 @@ void FrameTargets::draw(const FrameContext& frame, const ViewSetup& view, Layers
 }
 
 }  // namespace lucent
-

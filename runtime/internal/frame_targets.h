@@ -77,7 +77,8 @@ private:
     // Linked on first use (GlProgramVariants): only with a host's depth texture;
     // only for Layers::Peeled; only for Layers::OnePass. A frame's full and
     // reduced targets each use one of the last two.
-    GlProgramVariants copyDepthProgram_{{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}}};
+    GlProgramVariants copyDepthProgram_{
+        {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "copy_depth.frag"}}};
     GlProgramVariants peelProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "peel.frag"}}};
     GlProgramVariants layersProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "depth_layers.frag"}}};
     // segment.frag, and its FIRST_INTERVAL_ONLY and ONE_PASS_LAYERS variants.
@@ -86,9 +87,9 @@ private:
     void drawInOnePass(const FrameContext& frame, const ViewSetup& view);
     // The entries (front faces) and exits (back faces) nearest first, peeled.
     TextureTarget frontLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
-                                                       TextureTarget(GL_DEPTH_COMPONENT32F)};
+                                                        TextureTarget(GL_DEPTH_COMPONENT32F)};
     TextureTarget backLayers_[gpu::kMaxRaySegments] = {TextureTarget(GL_DEPTH_COMPONENT32F),
-                                                      TextureTarget(GL_DEPTH_COMPONENT32F)};
+                                                       TextureTarget(GL_DEPTH_COMPONENT32F)};
     TextureTarget back_{GL_DEPTH_COMPONENT32F}, host_{GL_DEPTH_COMPONENT32F};
     TextureTarget segments_{GL_RG32F};
     TextureTarget inside_{GL_RGBA32F};

@@ -47,8 +47,7 @@ private:
 class GlProgramVariants {
 public:
     // setUp runs once on each new variant (its constant uniforms, texture units).
-    explicit GlProgramVariants(std::vector<GlProgram::Stage> stages,
-                               std::function<void(const GlProgram&)> setUp = {})
+    explicit GlProgramVariants(std::vector<GlProgram::Stage> stages, std::function<void(const GlProgram&)> setUp = {})
         : stages_(std::move(stages)), setUp_(std::move(setUp)) {}
 
     // The variant with exactly these defines, in this order.

@@ -22,8 +22,13 @@ void checkGpuCapacity(size_t samples, size_t coefficientsPerSample, uint64_t max
 }
 
 GpuSamples::GpuSamples(const SampleSet& samples)
-    : source_(&samples), count_(samples.size()), shOrder_(int(samples.shOrder)), channels_(int(samples.channels)),
-      parameters_(samples.parameters), homogeneous_(isHomogeneous(samples)), slabs_(findSlabs(samples)) {
+    : source_(&samples),
+      count_(samples.size()),
+      shOrder_(int(samples.shOrder)),
+      channels_(int(samples.channels)),
+      parameters_(samples.parameters),
+      homogeneous_(isHomogeneous(samples)),
+      slabs_(findSlabs(samples)) {
     if (samples.shOrder > kMaxSampleShOrder)
         throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most " +
                     std::to_string(kMaxSampleShOrder));

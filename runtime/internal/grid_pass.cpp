@@ -43,8 +43,8 @@ void GridPass::add(const ScatteringGrid& grid) {
     if (n == 0 || grid.source.size() != 3 * n || grid.extinction.size() != 3 * n ||
         (!grid.refraction.empty() && grid.refraction.size() != 4 * n))
         throw Error("scattering grid: " + std::to_string(grid.source.size()) + " source, " +
-                    std::to_string(grid.extinction.size()) + " extinction and " + std::to_string(grid.refraction.size()) +
-                    " refraction values for " + std::to_string(n) + " voxels");
+                    std::to_string(grid.extinction.size()) + " extinction and " +
+                    std::to_string(grid.refraction.size()) + " refraction values for " + std::to_string(n) + " voxels");
     GLint largest = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
     if (*std::max_element(grid.dims.begin(), grid.dims.end()) > largest)

@@ -28,7 +28,7 @@ struct GpuObject {
     std::unique_ptr<GpuSamples> samples;
     const SampleSet* sampleSet = nullptr;  // the caller's, which samples holds on the GPU
     const VolumeObject* volume = nullptr;  // TranslucentObject::volume
-    Similarity placement;  // object to world; mesh, blockers and samples stay in object space
+    Similarity placement;                  // object to world; mesh, blockers and samples stay in object space
     double g = 0.0;
     std::optional<SurfaceDesc> surface;
     std::vector<std::unique_ptr<GpuMesh>> blockers;

@@ -48,11 +48,14 @@ void SamplePass::setSampleUnits(const GlProgram& p) {
 }
 
 const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const {
-    const std::pair<bool, const char*> features[] = {
-        {variant.slabs, "DENSITY_SLABS"},         {variant.regions, "SAMPLE_REGIONS"},
-        {variant.viewFromFront, "VIEW_FROM_FRONT"}, {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
-        {variant.receivedCached, "RECEIVED_CACHED"}, {variant.oneChannel, "ONE_CHANNEL"},
-        {variant.tracedLight, "TRACED_LIGHT"},     {variant.pointProxies, "POINT_PROXIES"}};
+    const std::pair<bool, const char*> features[] = {{variant.slabs, "DENSITY_SLABS"},
+                                                     {variant.regions, "SAMPLE_REGIONS"},
+                                                     {variant.viewFromFront, "VIEW_FROM_FRONT"},
+                                                     {variant.countUseful, "COUNT_USEFUL_FRAGMENTS"},
+                                                     {variant.receivedCached, "RECEIVED_CACHED"},
+                                                     {variant.oneChannel, "ONE_CHANNEL"},
+                                                     {variant.tracedLight, "TRACED_LIGHT"},
+                                                     {variant.pointProxies, "POINT_PROXIES"}};
     std::vector<std::string> defines;
     for (const auto& [wanted, define] : features)
         if (wanted) defines.push_back(define);
@@ -78,11 +81,11 @@ void SamplePass::prepare(FrameContext& frame) {
         // Traced on the CPU while the frame's targets are drawn, which leave a core
         // idle while llvmpipe loads their programs (docs/runtime.md); draw() waits.
         if (traced(o, frame) && !o.samples->tracedValid)
-            pendingTraces_.push_back(
-                {o.samples.get(), std::async(std::launch::async, [volumes, samples = o.sampleSet, placement = o.placement,
-                                                                  lights = frame.lights.lights] {
-                     return tracedOpticalDepths(volumes, *samples, placement, lights);
-                 })});
+            pendingTraces_.push_back({o.samples.get(), std::async(std::launch::async, [volumes, samples = o.sampleSet,
+                                                                                       placement = o.placement,
+                                                                                       lights = frame.lights.lights] {
+                                          return tracedOpticalDepths(volumes, *samples, placement, lights);
+                                      })});
         if (o.shadows && !o.shadowsValid && !traced(o, frame)) {
             o.shadows->render(frame.lights.lights, o.placement);
             o.shadowsValid = true;
@@ -165,14 +168,18 @@ void SamplePass::draw(FrameContext& frame) {
     }
     const bool points = pointProxiesCover(target.width, target.height);
     if (points) glEnable(GL_PROGRAM_POINT_SIZE);
-    if (frame.options.fragments) countFragments(frame, points);
-    else drawProxies(frame, points, false);
+    if (frame.options.fragments)
+        countFragments(frame, points);
+    else
+        drawProxies(frame, points, false);
     glDisable(GL_PROGRAM_POINT_SIZE);
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_DEPTH_TEST);
     glNamedFramebufferTexture(light_.framebuffer(), GL_DEPTH_ATTACHMENT, 0, 0);
-    if (frame.scatterScale > 1) upsample(frame);
-    else addLight(frame);
+    if (frame.scatterScale > 1)
+        upsample(frame);
+    else
+        addLight(frame);
 }
 
 void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful) {

@@ -48,14 +48,14 @@ private:
     // The scattering program's variants: the defines that shape scatter.vert,
     // scatter.geom, scatter.frag and sample_light.glsl (GlProgramVariants).
     struct ScatterVariant {
-        bool slabs = false;          // constant-density slabs (DENSITY_SLABS)
-        bool regions = false;        // samples clipped to their regions (SAMPLE_REGIONS)
-        bool viewFromFront = false;  // attenuated from each pixel's front face (VIEW_FROM_FRONT)
-        bool countUseful = false;    // the render benchmark's diagnostic (COUNT_USEFUL_FRAGMENTS)
-        bool receivedCached = false; // isotropic: the received light from received.comp (RECEIVED_CACHED)
-        bool oneChannel = false;     // grey sigma_t: one integral for three channels (ONE_CHANNEL)
-        bool tracedLight = false;    // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
-        bool pointProxies = false;   // pointProxiesCover(): a point sprite per proxy (POINT_PROXIES)
+        bool slabs = false;           // constant-density slabs (DENSITY_SLABS)
+        bool regions = false;         // samples clipped to their regions (SAMPLE_REGIONS)
+        bool viewFromFront = false;   // attenuated from each pixel's front face (VIEW_FROM_FRONT)
+        bool countUseful = false;     // the render benchmark's diagnostic (COUNT_USEFUL_FRAGMENTS)
+        bool receivedCached = false;  // isotropic: the received light from received.comp (RECEIVED_CACHED)
+        bool oneChannel = false;      // grey sigma_t: one integral for three channels (ONE_CHANNEL)
+        bool tracedLight = false;     // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
+        bool pointProxies = false;    // pointProxiesCover(): a point sprite per proxy (POINT_PROXIES)
     };
     // Whether kPointProxyTiles^2 points of the largest size cover a target of
     // this size (scatter.geom, POINT_PROXIES); otherwise squares of two triangles.

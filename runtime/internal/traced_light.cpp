@@ -42,7 +42,8 @@ std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volu
                     }
                     tau += v.volume->desc().medium.sigmaT * (path / toOwn);
                 }
-                depths[i * lightCount + j] = blocked ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(glm::vec3(tau), 0.0f);
+                depths[i * lightCount + j] =
+                    blocked ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(glm::vec3(tau), 0.0f);
             }
         }
     });

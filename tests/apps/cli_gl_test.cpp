@@ -19,7 +19,8 @@ const char* kTetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 
 std::string scene(const std::string& mesh, const std::string& medium = R"("sigma_t": 2, "albedo": 0.5)") {
     return R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 16, "height": 16},
                "lights": [{"type": "point", "position": [3, 3, 3], "intensity": 10}],
-               "objects": [{"mesh": ")" + mesh + R"(", "medium": {)" + medium + R"(}, "samples": "out.lsf"}]})";
+               "objects": [{"mesh": ")" +
+           mesh + R"(", "medium": {)" + medium + R"(}, "samples": "out.lsf"}]})";
 }
 
 class BadInput : public ::testing::Test {
@@ -253,7 +254,8 @@ TEST(Cli, TransportWritesTheWholeVolumeAsOpenVdb) {
     for (const auto& row : rows) {
         const openvdb::Vec3d world(std::stod(row[0]), std::stod(row[1]), std::stod(row[2]));
         const openvdb::Coord cell = grid->transform().worldToIndexCellCentered(world);
-        EXPECT_NEAR(grid->tree().getValue(cell), std::stod(row[3]), 1e-5 * std::stod(row[3])) << row[0] << " " << row[1];
+        EXPECT_NEAR(grid->tree().getValue(cell), std::stod(row[3]), 1e-5 * std::stod(row[3]))
+            << row[0] << " " << row[1];
     }
     EXPECT_GT(std::stod(rows[0][3]), 2.0 * std::stod(rows[1][3]));
     EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(4 * 4 * 2));
@@ -308,7 +310,8 @@ TEST_F(BadInput, PreprocessNeverWritesOverItsInputs) {
     std::string overMesh = scene("mesh.obj");
     overMesh.replace(overMesh.find("out.lsf"), 7, "mesh.obj");
     const auto before = std::filesystem::file_size(dir.path() / "mesh.obj");
-    expectFailure("preprocess " + dir.write("scene.json", overMesh).string(), "will not write over an input of this run");
+    expectFailure("preprocess " + dir.write("scene.json", overMesh).string(),
+                  "will not write over an input of this run");
     EXPECT_EQ(std::filesystem::file_size(dir.path() / "mesh.obj"), before);
     std::string overScene = scene(sphere);
     overScene.replace(overScene.find("out.lsf"), 7, "scene.json");
@@ -334,13 +337,16 @@ TEST_F(BadInput, AFailingObjectLeavesNoSampleFileOfAnother) {
                              R"(", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "first.lsf"})";
     // A sliver 1e-4 thick holds no offset layer: preprocessing fails on it, after the sphere.
     dir.write("sliver.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e-4\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
-    const std::string sliver = R"({"mesh": "sliver.obj", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "second.lsf"})";
+    const std::string sliver =
+        R"({"mesh": "sliver.obj", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "second.lsf"})";
     std::string text = scene("unused");
     text.replace(text.find("\"objects\": ["), std::string::npos, "\"objects\": [" + good + ", " + sliver + "]}");
     const auto run = test::runLucent(preprocess(text));  // progress lines come first, the error last
     EXPECT_NE(run.exitCode, 0);
     EXPECT_NE(run.stderrText.find("lucent: error: " + (dir.path() / "sliver.obj").string() +
-                                  ": object is too thin for a single offset layer"), std::string::npos) << run.stderrText;
+                                  ": object is too thin for a single offset layer"),
+              std::string::npos)
+        << run.stderrText;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "first.lsf"));
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "second.lsf"));
 }
@@ -359,13 +365,15 @@ TEST_F(BadInput, RenderNeverWritesOverItsInputs) {
 TEST_F(BadInput, FifosAndDevicesAreRefusedNotWaitedOn) {
     const auto fifo = dir.path() / "fifo";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    expectFailure("preprocess " + dir.write("scene.json", scene(fifo.string())).string(), "fifo: cannot read mesh file: it is a FIFO");
+    expectFailure("preprocess " + dir.write("scene.json", scene(fifo.string())).string(),
+                  "fifo: cannot read mesh file: it is a FIFO");
     expectFailure("preprocess " + fifo.string(), "fifo: cannot read scene file: it is a FIFO");
     expectFailure("info /dev/zero", "/dev/zero: cannot read sample file: it is a character device");
     expectFailure("info " + dir.path().string(), "cannot read sample file: it is a directory");
     expectFailure("view " + dir.write("v.json", scene("m.obj")).string() + " --script /dev/urandom",
                   "/dev/urandom: cannot read viewer script: it is a character device");
-    expectFailure("view " + dir.path().string() + "/v.json --script " + fifo.string(), "cannot read viewer script: it is a FIFO");
+    expectFailure("view " + dir.path().string() + "/v.json --script " + fifo.string(),
+                  "cannot read viewer script: it is a FIFO");
 }
 
 // Class 4 and 8: every number on the command line is finite and in range.
@@ -374,7 +382,8 @@ TEST_F(BadInput, NumbersOnTheCommandLineAreFiniteAndInRange) {
     expectFailure("render " + s + " -o x.png --tolerance nan", "--tolerance: 'nan' is not a finite number", "x.png");
     expectFailure("render " + s + " -o x.png --exposure inf", "--exposure: 'inf' is not a finite number", "x.png");
     expectFailure("preprocess " + s + " --width-factor nan", "--width-factor: 'nan' is not a finite number");
-    expectFailure("preprocess " + s + " --seed 18446744073709551616", "--seed: '18446744073709551616' is not a whole number");
+    expectFailure("preprocess " + s + " --seed 18446744073709551616",
+                  "--seed: '18446744073709551616' is not a whole number");
     expectFailure("bench accuracy " + s + " --tolerance -inf", "--tolerance: '-inf' is not a finite number");
 }
 
@@ -382,10 +391,14 @@ TEST_F(BadInput, NumbersOnTheCommandLineAreFiniteAndInRange) {
 // ever sees it. The sweep itself runs at draft quality on the cube.
 TEST(Cli, BenchAccuracyRunsNoShellAndWritesItsPlots) {
     test::ScratchDir dir;
-    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "cube.obj").string(), R"("sigma_t": 1, "albedo": 0.5)"));
+    const auto sceneFile =
+        dir.write("scene.json", scene((test::modelsDir() / "cube.obj").string(), R"("sigma_t": 1, "albedo": 0.5)"));
     const std::string hostile = (dir.path() / "out'; touch PWNED; '").string();
-    const auto run = test::runLucent("bench accuracy " + sceneFile.string() + " --quality draft --knobs cutoff --size 8 "
-                                     "--frames 1 -o \"" + hostile + "\"", "cd " + dir.path().string() + " &&");
+    const auto run = test::runLucent("bench accuracy " + sceneFile.string() +
+                                         " --quality draft --knobs cutoff --size 8 "
+                                         "--frames 1 -o \"" +
+                                         hostile + "\"",
+                                     "cd " + dir.path().string() + " &&");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "PWNED"));
     const auto rows = test::readCsv(std::filesystem::path(hostile) / "accuracy.csv");
@@ -407,7 +420,8 @@ TEST(Cli, PathTracerRendersWithItsOptions) {
         return readPfm(dir.path() / name);
     };
     const Image a = render("a.pfm", "--samples 4 --seed 5"), b = render("b.pfm", "--samples 4 --seed 5 --threads 1");
-    const Image c = render("c.pfm", "--samples 4 --seed 6"), single = render("s.pfm", "--samples 4 --seed 5 --max-scatter 1");
+    const Image c = render("c.pfm", "--samples 4 --seed 6"),
+                single = render("s.pfm", "--samples 4 --seed 5 --max-scatter 1");
     EXPECT_EQ(a.pixels, b.pixels);
     EXPECT_NE(a.pixels, c.pixels);
     double all = 0.0, one = 0.0;
@@ -423,19 +437,21 @@ TEST(Cli, PathTracerRendersWithItsOptions) {
 TEST(Cli, SameSeedSameFilesForAnyThreadCount) {
     for (const char* model : {"sphere.json", "torus-cube.json"}) {
         test::ScratchDir dir;
-        for (const std::string& file : {std::string(model), std::string("sphere.obj"), std::string("cube.obj"),
-                                        std::string("torus.obj")})
+        for (const std::string& file :
+             {std::string(model), std::string("sphere.obj"), std::string("cube.obj"), std::string("torus.obj")})
             std::filesystem::copy_file(test::modelsDir() / file, dir.path() / file);
         const std::string sceneFile = (dir.path() / model).string();
         const std::string samples = (dir.path() / (std::filesystem::path(model).stem().string() + ".lsf")).string();
         std::vector<std::vector<char>> files;
         for (const char* threads : {"1", "2"}) {
-            const auto run = test::runLucent("preprocess " + sceneFile + " --quality draft --samples 1500 --seed 9 --threads " + threads);
+            const auto run = test::runLucent("preprocess " + sceneFile +
+                                             " --quality draft --samples 1500 --seed 9 --threads " + threads);
             ASSERT_EQ(run.exitCode, 0) << run.stderrText;
             std::ifstream in(samples, std::ios::binary);
             files.emplace_back((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-            const auto image = test::runLucent("render " + sceneFile + " --method path --samples 2 --width 12 --height 12 --seed 3 --threads " +
-                                               threads + " -o " + (dir.path() / (std::string(threads) + ".pfm")).string());
+            const auto image = test::runLucent(
+                "render " + sceneFile + " --method path --samples 2 --width 12 --height 12 --seed 3 --threads " +
+                threads + " -o " + (dir.path() / (std::string(threads) + ".pfm")).string());
             ASSERT_EQ(image.exitCode, 0) << image.stderrText;
         }
         EXPECT_GT(files[0].size(), 1000u) << model;
@@ -449,9 +465,9 @@ TEST(Cli, FallsBackFromEglToOsmesa) {
     test::ScratchDir dir;
     const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
     ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
-    const auto run = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.pfm").string() +
-                                         " --method ss --width 8 --height 8",
-                                     "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+    const auto run = test::runLucent(
+        "render " + sceneFile.string() + " -o " + (dir.path() / "a.pfm").string() + " --method ss --width 8 --height 8",
+        "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
     EXPECT_EQ(run.exitCode, 0) << run.stderrText;
     EXPECT_NE(run.stderrText.find("method ss on osmesa"), std::string::npos) << run.stderrText;
 }
@@ -468,9 +484,9 @@ TEST(Cli, OnlyWhatNeedsOpenVdbLoadsIt) {
     ASSERT_EQ(preprocess.exitCode, 0);
     EXPECT_NE(preprocess.stderrText.find("liblucent_preprocess_openvdb.so"), std::string::npos);
     EXPECT_NE(preprocess.stderrText.find("libopenvdb.so"), std::string::npos);
-    const auto render = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "a.png").string() +
-                                            " --method ss --width 8 --height 8",
-                                        "LD_DEBUG=files");
+    const auto render = test::runLucent(
+        "render " + sceneFile.string() + " -o " + (dir.path() / "a.png").string() + " --method ss --width 8 --height 8",
+        "LD_DEBUG=files");
     ASSERT_EQ(render.exitCode, 0);
     EXPECT_EQ(render.stderrText.find("openvdb"), std::string::npos);
 }
@@ -504,12 +520,15 @@ TEST(Cli, OnlyAnOpenGlContextLoadsLlvm) {
 TEST(Cli, PublishedSchemeReachesTheSampleFile) {
     test::ScratchDir dir;
     const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
-    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300 --scheme published").exitCode, 0);
+    ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300 --scheme published")
+                  .exitCode,
+              0);
     const auto info = test::runLucent("info " + (dir.path() / "out.lsf").string());
     EXPECT_NE(info.stdoutText.find("scheme                 published"), std::string::npos) << info.stdoutText;
     ASSERT_EQ(test::runLucent("preprocess " + sceneFile.string() + " --quality draft --samples 300").exitCode, 0);
-    EXPECT_NE(test::runLucent("info " + (dir.path() / "out.lsf").string()).stdoutText.find("scheme                 lucent"),
-              std::string::npos);
+    EXPECT_NE(
+        test::runLucent("info " + (dir.path() / "out.lsf").string()).stdoutText.find("scheme                 lucent"),
+        std::string::npos);
 }
 
 TEST(Cli, PreprocessThenInfo) {

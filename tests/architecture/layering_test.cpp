@@ -66,8 +66,8 @@ TEST(Layering, EachFolderIncludesOnlyTheFoldersBelowIt) {
             if (!kMayInclude.count(target) || target == folder) continue;  // a system or generated header, or its own
             ++checked;
             EXPECT_TRUE(allowed.count(target))
-                << fs::relative(inc.file, kSource).string() << ":" << inc.line << " includes " << inc.target
-                << ": " << folder << "/ may not include " << target << "/";
+                << fs::relative(inc.file, kSource).string() << ":" << inc.line << " includes " << inc.target << ": "
+                << folder << "/ may not include " << target << "/";
         }
     }
     EXPECT_GT(checked, 100u) << "the scan found too few includes to mean anything";

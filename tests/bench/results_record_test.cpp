@@ -36,8 +36,8 @@ bool isBenchmark(const std::string& title) {
 }
 
 TEST(ResultsRecord, WhatABenchmarkPrintsParsesBackWithItsCommandLine) {
-    const char* argv[] = {"/somewhere/build/bin/lucent-bench-render", "--frames", "3", "--record", "out.md",
-                          "--backend", "a b"};
+    const char* argv[] = {
+        "/somewhere/build/bin/lucent-bench-render", "--frames", "3", "--record", "out.md", "--backend", "a b"};
     ResultsRecord out(7, argv);
     out.addDevice("egl: llvmpipe");
     out.print("a paragraph\n\n");

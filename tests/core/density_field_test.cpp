@@ -69,7 +69,8 @@ TEST(GridDensity, RawFileSizeMustMatchDims) {
         FAIL();
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("short.raw: grid file holds 28 bytes but dims [2, 2, 2] need 32"),
-                  std::string::npos) << e.what();
+                  std::string::npos)
+            << e.what();
     }
     float negative[8] = {0, 0, 0, -1, 0, 0, 0, 0};
     std::ofstream(dir.path() / "neg.raw", std::ios::binary).write(reinterpret_cast<char*>(negative), sizeof negative);

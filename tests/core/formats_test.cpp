@@ -88,8 +88,7 @@ TEST(Formats, PngDecodedByLibpngHoldsTheExposedSrgbValues) {
     for (int y = 0; y < 2; ++y)
         for (int x = 0; x < 3; ++x)
             for (int c = 0; c < 3; ++c)
-                EXPECT_EQ(int(png.at(x, y)[c]), srgb8(0.05 * double(image.at(x, y)[c])))
-                    << x << "," << y << "," << c;
+                EXPECT_EQ(int(png.at(x, y)[c]), srgb8(0.05 * double(image.at(x, y)[c]))) << x << "," << y << "," << c;
 }
 
 // Every code on the way: a ramp through [0, 1.2] in 20 000 steps, four decades of
@@ -101,7 +100,8 @@ TEST(Formats, PngRampHoldsTheSrgbCodeOfEveryValue) {
     Image ramp(20000, 1);
     for (int x = 0; x < ramp.width; ++x) {
         const double t = double(x) / (ramp.width - 1);
-        const double v = x < ramp.width / 2 ? 1e-5 * std::pow(1e4, 2.0 * t) : 1.2 * (2.0 * t - 1.0) + 0.1 * (2.0 - 2.0 * t);
+        const double v =
+            x < ramp.width / 2 ? 1e-5 * std::pow(1e4, 2.0 * t) : 1.2 * (2.0 * t - 1.0) + 0.1 * (2.0 - 2.0 * t);
         ramp.at(x, 0) = glm::vec3(float(v), float(0.5 * v), float(2.0 * v));
     }
     writeImage(dir.path() / "ramp.png", ramp, 1.0f);
@@ -135,7 +135,8 @@ TEST(Formats, ExrDecodedByOpenExrHoldsTheLinearFloats) {
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
         channel[c].resize(6);
-        frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channel[c].data()), sizeof(float), 3 * sizeof(float)));
+        frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(channel[c].data()), sizeof(float),
+                                          3 * sizeof(float)));
     }
     exr.setFrameBuffer(frame);
     exr.readPixels(window.min.y, window.max.y);
@@ -186,36 +187,36 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     EXPECT_EQ(at<uint32_t>(b, 100), 1u);
     // The arrays follow in the documented order, N = 1.
     size_t o = 104;
-    EXPECT_EQ(at<float>(b, o + 8), 3.0f);      // position z
+    EXPECT_EQ(at<float>(b, o + 8), 3.0f);  // position z
     o += 12;
-    EXPECT_EQ(at<float>(b, o), 0.25f);          // radius
+    EXPECT_EQ(at<float>(b, o), 0.25f);  // radius
     o += 4;
-    EXPECT_EQ(at<float>(b, o), 0.75f);          // width
+    EXPECT_EQ(at<float>(b, o), 0.75f);  // width
     o += 4;
-    EXPECT_EQ(at<float>(b, o), 4.0f);          // w sigma_s r
+    EXPECT_EQ(at<float>(b, o), 4.0f);  // w sigma_s r
     o += 12;
-    EXPECT_EQ(at<float>(b, o + 4), 8.0f);      // sigma_t g
+    EXPECT_EQ(at<float>(b, o + 4), 8.0f);  // sigma_t g
     o += 12;
-    EXPECT_EQ(at<float>(b, o), -0.5f);          // region lo
+    EXPECT_EQ(at<float>(b, o), -0.5f);  // region lo
     o += 8;
-    EXPECT_EQ(at<float>(b, o + 8), 12.0f);     // image z
+    EXPECT_EQ(at<float>(b, o + 8), 12.0f);  // image z
     o += 12;
-    EXPECT_EQ(at<float>(b, o + 8), 1.0f);               // ball normal z
-    EXPECT_EQ(at<float>(b, o + 12), 0.3f);              // depth
-    EXPECT_EQ(at<float>(b, o + 16), 0.2f);              // curvature
-    EXPECT_EQ(at<float>(b, o + 20), 0.6f);     // share
+    EXPECT_EQ(at<float>(b, o + 8), 1.0f);   // ball normal z
+    EXPECT_EQ(at<float>(b, o + 12), 0.3f);  // depth
+    EXPECT_EQ(at<float>(b, o + 16), 0.2f);  // curvature
+    EXPECT_EQ(at<float>(b, o + 20), 0.6f);  // share
     o += 24;
-    EXPECT_EQ(at<float>(b, o + 11 * 4), 0.11f); // the last SH coefficient
+    EXPECT_EQ(at<float>(b, o + 11 * 4), 0.11f);  // the last SH coefficient
     o += 48;
-    EXPECT_EQ(at<float>(b, o), 0.125f);         // truncation error
+    EXPECT_EQ(at<float>(b, o), 0.125f);  // truncation error
     o += 4;
-    EXPECT_EQ(at<uint64_t>(b, o), 4u);          // mesh vertices V
-    EXPECT_EQ(at<uint64_t>(b, o + 8), 4u);      // mesh faces T
+    EXPECT_EQ(at<uint64_t>(b, o), 4u);      // mesh vertices V
+    EXPECT_EQ(at<uint64_t>(b, o + 8), 4u);  // mesh faces T
     o += 16;
     EXPECT_EQ(at<float>(b, o + 3 * 12 + 8), 1.0f);  // the last vertex's z
     o += 4 * 12;
-    EXPECT_EQ(at<uint32_t>(b, o + 4), 2u);          // the first face's second corner
-    EXPECT_EQ(at<uint32_t>(b, o + 3 * 12 + 8), 3u); // the last face's third corner
+    EXPECT_EQ(at<uint32_t>(b, o + 4), 2u);           // the first face's second corner
+    EXPECT_EQ(at<uint32_t>(b, o + 3 * 12 + 8), 3u);  // the last face's third corner
     o += 4 * 12;
     ASSERT_EQ(b.size(), o + 8);
     EXPECT_EQ(at<uint64_t>(b, o), uint64_t(XXH3_64bits(b.data(), o)));  // of every byte before the checksum

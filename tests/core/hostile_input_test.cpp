@@ -38,8 +38,8 @@ std::string errorOf(F&& f) {
 std::string sceneWith(const std::string& camera, const std::string& light, const std::string& mesh,
                       const std::string& medium = R"("sigma_t": 2, "albedo": 0.5)") {
     return R"({"camera": {"position": )" + camera + R"(, "target": [0, 0, 0], "fov_y": 40, "width": 8, "height": 8},
-               "lights": [)" + light + R"(], "objects": [{"mesh": ")" + mesh + R"(", "medium": {)" + medium +
-           R"(}, "samples": "s.lsf"}]})";
+               "lights": [)" +
+           light + R"(], "objects": [{"mesh": ")" + mesh + R"(", "medium": {)" + medium + R"(}, "samples": "s.lsf"}]})";
 }
 const char* kLight = R"({"type": "point", "position": [3, 3, 3], "intensity": 10})";
 
@@ -48,12 +48,15 @@ TEST(HostileInput, OnlyRegularFilesAreRead) {
     test::ScratchDir dir;
     const auto fifo = dir.path() / "fifo";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    EXPECT_CONTAINS(errorOf([&] { parseScene(fifo); }), "fifo: cannot read scene file: it is a FIFO, not a regular file");
+    EXPECT_CONTAINS(errorOf([&] { parseScene(fifo); }),
+                    "fifo: cannot read scene file: it is a FIFO, not a regular file");
     EXPECT_CONTAINS(errorOf([&] { readSampleFile("/dev/zero"); }), "it is a character device, not a regular file");
     EXPECT_CONTAINS(errorOf([&] { readSampleFile(dir.path()); }), "it is a directory, not a regular file");
     std::vector<std::string> warnings;
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(fifo, warnings); }), "cannot read mesh file: it is a FIFO");
-    EXPECT_CONTAINS(errorOf([&] { loadRawGrid("/dev/urandom", 2, 2, 2, Bounds3{Vec3(0), Vec3(1)}); }),
+    EXPECT_CONTAINS(errorOf([&] {
+                        loadRawGrid("/dev/urandom", 2, 2, 2, Bounds3{Vec3(0), Vec3(1)});
+                    }),
                     "/dev/urandom: cannot read density grid file: it is a character device");
     // The scene's fingerprint hashes the mesh: a FIFO mesh must not block the parser.
     const auto scene = dir.write("scene.json", sceneWith("[0, 0, 5]", kLight, fifo.string()));
@@ -64,15 +67,17 @@ TEST(HostileInput, OnlyRegularFilesAreRead) {
 TEST(HostileInput, ClaimedSizesAreCheckedBeforeAllocating) {
     test::ScratchDir dir;
     std::vector<std::string> warnings;
-    const auto ply = dir.write("bomb.ply",
-                               "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
-                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                               "0 0 0\n3 0 0 0\n");
+    const auto ply =
+        dir.write("bomb.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                  "0 0 0\n3 0 0 0\n");
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(ply, warnings); }), "bomb.ply: header claims 1000000000000 elements");
     const auto ply2 = dir.write("short.ply",
                                 "ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n"
                                 "property float y\nproperty float z\nend_header\n");
-    EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(ply2, warnings); }), "short.ply: PLY header claims elements of at least 12000 bytes");
+    EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(ply2, warnings); }),
+                    "short.ply: PLY header claims elements of at least 12000 bytes");
     const auto off = dir.write("bomb.off", "OFF\n50000000 60000000 0\n0 0 0\n");
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(off, warnings); }), "bomb.off: OFF header claims 50000000 vertices");
 
@@ -80,7 +85,9 @@ TEST(HostileInput, ClaimedSizesAreCheckedBeforeAllocating) {
     const auto raw = dir.path() / "huge.raw";
     { std::ofstream(raw, std::ios::binary); }
     std::filesystem::resize_file(raw, uint64_t(256) << 30);
-    EXPECT_CONTAINS(errorOf([&] { loadRawGrid(raw, 4096, 4096, 4096, Bounds3{Vec3(0), Vec3(1)}); }),
+    EXPECT_CONTAINS(errorOf([&] {
+                        loadRawGrid(raw, 4096, 4096, 4096, Bounds3{Vec3(0), Vec3(1)});
+                    }),
                     "density grid would need 256 GiB, more than the memory budget of 4 GiB");
 
     // An OpenVDB file of a few KB whose active box is 1500^3 voxels: two voxels at opposite corners.
@@ -104,24 +111,39 @@ TEST(HostileInput, OutOfRangeNumbersAreRefusedAndDirectionsNormalisedSafely) {
     auto parse = [&](const std::string& text) { return parseSceneText(text, dir.path() / "scene.json"); };
     EXPECT_CONTAINS(errorOf([&] { parse(sceneWith("[0, 0, 1e19]", kLight, sphere)); }),
                     "/camera/position/2: must lie in [-1e+13, 1e+13] (got 1e+19)");
-    EXPECT_CONTAINS(errorOf([&] { parse(sceneWith("[0, 0, 5]", R"({"type": "point", "position": [1e20, 0, 0], "intensity": 1e38})", sphere)); }),
-                    "/lights/0/position/0: must lie in [-1e+13, 1e+13]");
-    EXPECT_CONTAINS(errorOf([&] { parse(sceneWith("[0, 0, 5]", R"({"type": "point", "position": [3, 3, 3], "intensity": 1e300})", sphere)); }),
-                    "/lights/0/intensity: must lie in [0, 1e+30]");
-    EXPECT_CONTAINS(errorOf([&] { parse(sceneWith("[0, 0, 5]", kLight, sphere, R"("sigma_t": 1, "albedo": 0.5, "density": {"type": "layers", "axis": "y", "values": [1, 1e300]})")); }),
-                    "/values/1: must lie in [0, 1e+30]");
-    const SceneDesc huge = parse(sceneWith("[0, 0, 5]", R"({"type": "directional", "direction": [1e200, 0, 0], "irradiance": 1})", sphere));
+    EXPECT_CONTAINS(
+        errorOf([&] {
+            parse(sceneWith("[0, 0, 5]", R"({"type": "point", "position": [1e20, 0, 0], "intensity": 1e38})", sphere));
+        }),
+        "/lights/0/position/0: must lie in [-1e+13, 1e+13]");
+    EXPECT_CONTAINS(
+        errorOf([&] {
+            parse(sceneWith("[0, 0, 5]", R"({"type": "point", "position": [3, 3, 3], "intensity": 1e300})", sphere));
+        }),
+        "/lights/0/intensity: must lie in [0, 1e+30]");
+    EXPECT_CONTAINS(
+        errorOf([&] {
+            parse(sceneWith(
+                "[0, 0, 5]", kLight, sphere,
+                R"("sigma_t": 1, "albedo": 0.5, "density": {"type": "layers", "axis": "y", "values": [1, 1e300]})"));
+        }),
+        "/values/1: must lie in [0, 1e+30]");
+    const SceneDesc huge = parse(
+        sceneWith("[0, 0, 5]", R"({"type": "directional", "direction": [1e200, 0, 0], "irradiance": 1})", sphere));
     EXPECT_EQ(huge.lights[0].direction, Vec3(1, 0, 0));
-    const SceneDesc tiny = parse(sceneWith("[0, 0, 5]", R"({"type": "directional", "direction": [1e-300, 0, 0], "irradiance": 1})", sphere));
+    const SceneDesc tiny = parse(
+        sceneWith("[0, 0, 5]", R"({"type": "directional", "direction": [1e-300, 0, 0], "irradiance": 1})", sphere));
     EXPECT_EQ(tiny.lights[0].direction, Vec3(1, 0, 0));
     std::vector<std::string> warnings;
-    const auto far = dir.write("far.obj", "v 0 0 0\nv 1e19 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    const auto far =
+        dir.write("far.obj", "v 0 0 0\nv 1e19 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(far, warnings); }), "vertex 1 lies farther than 1e13 from the origin");
     // sigma_t times the density must stay a float (class 6: it became inf in the sample file).
     ObjectDesc dense = test::simpleObject(sphere, 1e20);
     dense.medium.density.type = DensityDesc::Type::Layers;
     dense.medium.density.values = {1e20};
-    EXPECT_CONTAINS(errorOf([&] { VolumeObject(dense, warnings); }), "sigma_t times the density reaches 1e+40, above the 1e30");
+    EXPECT_CONTAINS(errorOf([&] { VolumeObject(dense, warnings); }),
+                    "sigma_t times the density reaches 1e+40, above the 1e30");
 }
 
 // Class 6: the reference refuses an optical size its single-precision ray casting
@@ -153,8 +175,10 @@ TEST(HostileInput, ErrorsSayWhatIsWrongInOneLine) {
     const auto obj = dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 9\n");
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(obj, warnings); }),
                     "index.obj: line 6: face refers to vertex 9, but 4 vertices come before it");
-    const auto tiny = dir.write("tiny.obj", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nv 0 0 1e-30\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
-    EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(tiny, warnings); }), "tiny.obj: mesh is 1.73e-30 across; Lucent renders objects at least 1e-9 across");
+    const auto tiny =
+        dir.write("tiny.obj", "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nv 0 0 1e-30\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(tiny, warnings); }),
+                    "tiny.obj: mesh is 1.73e-30 across; Lucent renders objects at least 1e-9 across");
     const auto om = dir.write("mesh.om", "OM");
     EXPECT_CONTAINS(errorOf([&] { loadClosedMesh(om, warnings); }), "unsupported mesh format '.om'");
     // A NUL or a newline in a name is shown, not obeyed.
@@ -167,7 +191,8 @@ TEST(HostileInput, ErrorsSayWhatIsWrongInOneLine) {
     SampleSet set;
     set.bounds = Bounds3{Vec3(0.0), Vec3(std::nan(""))};
     writeSampleFile(dir.path() / "nan.lsf", set);
-    EXPECT_CONTAINS(errorOf([&] { readSampleFile(dir.path() / "nan.lsf"); }), "nan.lsf: sample file header has non-finite bounds");
+    EXPECT_CONTAINS(errorOf([&] { readSampleFile(dir.path() / "nan.lsf"); }),
+                    "nan.lsf: sample file header has non-finite bounds");
 }
 
 // Class 1 at the level of the checks: identity, not names, decides.
@@ -182,7 +207,9 @@ TEST(HostileInput, OutputsAreComparedWithInputsByIdentity) {
                     "soft.lsf: will not write over a symbolic link");
     EXPECT_CONTAINS(errorOf([&] { checkOutputIsNoInput("/dev/null", {}); }), "will not write over a character device");
     EXPECT_NO_THROW(checkOutputIsNoInput(dir.path() / "new.lsf", {mesh}));
-    EXPECT_CONTAINS(errorOf([&] { checkOutputsDistinct({dir.path() / "a.lsf", dir.path() / "." / "a.lsf"}); }),
+    EXPECT_CONTAINS(errorOf([&] {
+                        checkOutputsDistinct({dir.path() / "a.lsf", dir.path() / "." / "a.lsf"});
+                    }),
                     "is the output of two objects");
 }
 

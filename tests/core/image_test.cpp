@@ -19,8 +19,8 @@ namespace {
 TEST(Image, PfmRoundTripKeepsRowsAndSanitises) {
     test::ScratchDir dir;
     Image image(3, 2);
-    image.at(0, 0) = {1, 2, 3};           // top-left
-    image.at(2, 1) = {0.5f, 0.25f, 4};    // bottom-right
+    image.at(0, 0) = {1, 2, 3};         // top-left
+    image.at(2, 1) = {0.5f, 0.25f, 4};  // bottom-right
     image.at(1, 0) = {std::nanf(""), -1.0f, INFINITY};
     writeImage(dir.path() / "a.pfm", image);
     const Image back = readPfm(dir.path() / "a.pfm");

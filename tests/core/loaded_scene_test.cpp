@@ -17,7 +17,9 @@ namespace {
 // A scene of one box [-1, 1]^3 read from box.obj, samples in box.lsf.
 SceneDesc boxScene(const test::ScratchDir& dir) {
     test::writeBox(dir, "box.obj", Vec3(-1), Vec3(1));
-    const auto file = dir.write("scene.json", R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 64, "height": 64},
+    const auto file =
+        dir.write("scene.json",
+                  R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 64, "height": 64},
         "lights": [{"type": "point", "position": [3, 3, 3], "intensity": 1}],
         "objects": [{"mesh": "box.obj", "medium": {"sigma_t": 2, "albedo": 0.5}, "samples": "box.lsf"}]})");
     return parseScene(file);

@@ -15,7 +15,8 @@ namespace lucent {
 namespace {
 
 void expectRgbNear(const Rgb& got, const Rgb& expected, double relative, const std::string& what) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], relative * expected[c] + 1e-12) << what << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[c], expected[c], relative * expected[c] + 1e-12) << what << " channel " << c;
 }
 
 const MediumPreset& preset(const std::string& name) {
@@ -87,7 +88,8 @@ TEST(MediumPresets, NamesAreUniqueLowerCaseAndEachMediumIsValid) {
 
 std::string sceneWith(const std::string& units, const std::string& medium) {
     return R"({)" + units + R"("camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
-      "lights": [], "objects": [{"mesh": "m.obj", "medium": )" + medium + R"(, "samples": "s.lsf"}]})";
+      "lights": [], "objects": [{"mesh": "m.obj", "medium": )" +
+           medium + R"(, "samples": "s.lsf"}]})";
 }
 
 TEST(SceneUnits, APresetIsConvertedToTheScenesUnit) {
@@ -120,14 +122,16 @@ TEST(SceneUnits, BadPresetsAndUnitsAreOneClearError) {
         << unknown;
     EXPECT_NE(unknown.find("pacific-ocean-surface-water)"), std::string::npos) << unknown;
     EXPECT_EQ(unknown.find('\n'), std::string::npos);
-    EXPECT_NE(test::sceneErrorOf(sceneWith("", R"({"preset": "marble"})")).find("a preset needs the scene's top-level \"units\""),
+    EXPECT_NE(test::sceneErrorOf(sceneWith("", R"({"preset": "marble"})"))
+                  .find("a preset needs the scene's top-level \"units\""),
               std::string::npos);
     EXPECT_NE(test::sceneErrorOf(sceneWith(R"("units": "inch",)", R"({"sigma_t": 1, "albedo": 0.5})"))
                   .find("/units: unknown unit 'inch' (valid: mm, cm, m)"),
               std::string::npos);
     // Without a preset sigma_t and albedo stay required.
-    EXPECT_NE(test::sceneErrorOf(sceneWith(R"("units": "mm",)", R"({"albedo": 0.5})")).find("missing required key 'sigma_t'"),
-              std::string::npos);
+    EXPECT_NE(
+        test::sceneErrorOf(sceneWith(R"("units": "mm",)", R"({"albedo": 0.5})")).find("missing required key 'sigma_t'"),
+        std::string::npos);
 }
 
 TEST(SceneUnits, APresetsFingerprintFollowsTheUnits) {

@@ -49,7 +49,8 @@ TEST(MemoryObject, MeshesFromMemoryGetTheChecksFilesGet) {
     EXPECT_NE(errorOf(open).find("host mesh: mesh is not closed"), std::string::npos) << errorOf(open);
     Soup stray = good;
     stray.triangles[0][1] = 8;
-    EXPECT_NE(errorOf(stray).find("host mesh: triangle 0 refers to vertex 8 of 8"), std::string::npos) << errorOf(stray);
+    EXPECT_NE(errorOf(stray).find("host mesh: triangle 0 refers to vertex 8 of 8"), std::string::npos)
+        << errorOf(stray);
     Soup infinite = good;
     infinite.positions[3].y = INFINITY;
     EXPECT_NE(errorOf(infinite).find("host mesh: vertex 3 has a non-finite coordinate"), std::string::npos)

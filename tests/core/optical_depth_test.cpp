@@ -46,7 +46,8 @@ TEST(OpticalDepth, ConcaveTorusThroughVertices) {
     // along +x from the tube centre at x = -0.5 is inside on [-0.5, -0.32] and [0.32, 0.68].
     std::vector<std::string> warnings;
     const VolumeObject torus(test::simpleObject(test::modelsDir() / "torus.obj", 1.0), warnings);
-    EXPECT_NEAR(torus.densityPath(Vec3(-0.5, 0, 0), Vec3(1, 0, 0)), 0.18 + 0.36, 1e-6);  // OpenMesh reads coordinates as float
+    EXPECT_NEAR(torus.densityPath(Vec3(-0.5, 0, 0), Vec3(1, 0, 0)), 0.18 + 0.36,
+                1e-6);  // OpenMesh reads coordinates as float
     EXPECT_NEAR(torus.densityPath(Vec3(-0.9, 0, 0), Vec3(1, 0, 0)), 0.36 + 0.36, 1e-6);
     EXPECT_DOUBLE_EQ(torus.densityPath(Vec3(0, 0, 0), Vec3(0, 1, 0)), 0.0);
 }

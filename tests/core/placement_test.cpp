@@ -27,13 +27,14 @@ const double kScale = 1.7, kDegrees = 37.0;
 const Vec3 kAxis(1.0, 2.0, 3.0), kTranslate(0.4, -0.3, 0.25);
 
 glm::dmat4 glmPlacement() {
-    return glm::translate(glm::dmat4(1.0), kTranslate) * glm::rotate(glm::dmat4(1.0), glm::radians(kDegrees), glm::normalize(kAxis)) *
+    return glm::translate(glm::dmat4(1.0), kTranslate) *
+           glm::rotate(glm::dmat4(1.0), glm::radians(kDegrees), glm::normalize(kAxis)) *
            glm::scale(glm::dmat4(1.0), Vec3(kScale));
 }
 
 // mesh's vertices multiplied by m, as an OBJ in dir.
-std::filesystem::path writeMoved(const test::ScratchDir& dir, const std::string& name, const std::filesystem::path& mesh,
-                                 const glm::dmat4& m) {
+std::filesystem::path writeMoved(const test::ScratchDir& dir, const std::string& name,
+                                 const std::filesystem::path& mesh, const glm::dmat4& m) {
     std::vector<std::string> warnings;
     const TriangleMesh loaded = loadClosedMesh(mesh, warnings);
     std::string obj;
@@ -43,8 +44,8 @@ std::filesystem::path writeMoved(const test::ScratchDir& dir, const std::string&
         std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", q.x, q.y, q.z);
         obj += line;
     }
-    for (const auto& t : loaded.triangles) obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-                                                  std::to_string(t[2] + 1) + "\n";
+    for (const auto& t : loaded.triangles)
+        obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
     return dir.write(name, obj);
 }
 
@@ -67,7 +68,8 @@ TEST(Placement, TheScenesTransformIsScaleThenRotationThenTranslation) {
 }
 
 TEST(Placement, BadTransformsAreOneLineErrors) {
-    const std::string base = R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 8, "height": 8},
+    const std::string base =
+        R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 40, "width": 8, "height": 8},
       "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": 1, "albedo": 0.5}, "samples": "s.lsf",
       "transform": T}]})";
     auto errorOf = [&](const std::string& transform) {
@@ -79,7 +81,8 @@ TEST(Placement, BadTransformsAreOneLineErrors) {
         {R"({"scale": [1, 2, 1]})", "/objects/0/transform/scale: a non-uniform scale is not supported"},
         {R"({"scale": 0})", "/objects/0/transform/scale: must lie in [1e-09, 1e+09]"},
         {R"({"scale": -1})", "/objects/0/transform/scale: must lie in"},
-        {R"({"rotate": {"axis": [0, 0, 0], "degrees": 10}})", "/objects/0/transform/rotate/axis: must not be the zero vector"},
+        {R"({"rotate": {"axis": [0, 0, 0], "degrees": 10}})",
+         "/objects/0/transform/rotate/axis: must not be the zero vector"},
         {R"({"rotate": {"axis": [0, 0, 1]}})", "/objects/0/transform/rotate: missing required key 'degrees'"},
         {R"({"translate": [0, 1e14, 0]})", "/objects/0/transform/translate/1: must lie in"},
         {R"({"shear": 1})", "/objects/0/transform/shear: unknown key"},
@@ -114,7 +117,12 @@ TEST(Placement, APlacedObjectIsItsMovedMesh) {
                                    glm::rotate(glm::dmat4(1.0), glm::radians(90.0), Vec3(0, 0, 1)) *
                                    glm::scale(glm::dmat4(1.0), Vec3(kScale));
     const Case cases[] = {
-        {"bunny", test::modelsDir() / "bunny.off", glmPlacement(), makeSimilarity(kScale, kAxis, kDegrees, kTranslate), {}, {}},
+        {"bunny",
+         test::modelsDir() / "bunny.off",
+         glmPlacement(),
+         makeSimilarity(kScale, kAxis, kDegrees, kTranslate),
+         {},
+         {}},
         {"layered box", cube, quarterTurn, makeSimilarity(kScale, Vec3(0, 0, 1), 90.0, kTranslate), layersX, layersY},
     };
     for (const Case& c : cases) {
@@ -165,7 +173,8 @@ TEST(Placement, TheReferenceSeesThePlacedObject) {
     const auto a = loadObjects(placed, warnings), b = loadObjects(moved, warnings);
     ReferenceSettings settings;
     settings.tolerance = 1e-4;
-    const ImageError e = compareImages(ReferenceRenderer(placed, a).render(settings), ReferenceRenderer(moved, b).render(settings));
+    const ImageError e =
+        compareImages(ReferenceRenderer(placed, a).render(settings), ReferenceRenderer(moved, b).render(settings));
     EXPECT_GT(e.pixels, 100u);
     // Only the quadrature's own tolerance per pixel may set them apart.
     EXPECT_LT(e.relativeRmse, 10.0 * settings.tolerance);

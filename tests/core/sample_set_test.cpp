@@ -170,11 +170,13 @@ TEST(SampleFile, RejectsAMeshThatCannotBeDrawn) {
         return readError(dir.path() / name);
     };
     const uint32_t index = 4;
-    EXPECT_NE(patched("index.lsf", faces + 5 * 4, &index, 4).find("index.lsf: sample file holds a mesh face with a vertex index out of range"),
+    EXPECT_NE(patched("index.lsf", faces + 5 * 4, &index, 4)
+                  .find("index.lsf: sample file holds a mesh face with a vertex index out of range"),
               std::string::npos);
     const float nan = std::nanf("");
-    EXPECT_NE(patched("nan.lsf", vertices + 4, &nan, 4).find("nan.lsf: sample file holds a mesh vertex that is not finite"),
-              std::string::npos);
+    EXPECT_NE(
+        patched("nan.lsf", vertices + 4, &nan, 4).find("nan.lsf: sample file holds a mesh vertex that is not finite"),
+        std::string::npos);
     const float far = 1e20f;
     EXPECT_NE(patched("far.lsf", vertices, &far, 4).find("beyond 1e13"), std::string::npos);
     // Counts that claim more than the file holds, or overflow when multiplied.

@@ -64,11 +64,13 @@ TEST(Scene, ErrorsNameFileAndJsonPath) {
     const std::vector<Case> cases = {
         {"\"fov_y\": 40", "\"fov_y\": 40, \"fovy\": 1", "dir/scene.json: /camera/fovy: unknown key"},
         {"\"width\": 64", "\"width\": \"64\"", "dir/scene.json: /camera/width: must be an integer"},
-        {"\"sigma_t\": [1, 2, 3]", "\"sigma_t\": [1, -2, 3]", "dir/scene.json: /objects/0/medium/sigma_t/1: must lie in"},
+        {"\"sigma_t\": [1, 2, 3]", "\"sigma_t\": [1, -2, 3]",
+         "dir/scene.json: /objects/0/medium/sigma_t/1: must lie in"},
         {"\"albedo\": 0.75", "\"albedo\": 1.5", "dir/scene.json: /objects/0/medium/albedo: must lie in [0, 1]"},
         {"\"albedo\": 0.75,", "", "dir/scene.json: /objects/0/medium: missing required key 'albedo'"},
         {"\"type\": \"point\"", "\"type\": \"spot\"", "dir/scene.json: /lights/0/type: unknown light type"},
-        {"\"values\": [1, 2]", "\"values\": [1, -2]", "dir/scene.json: /objects/0/medium/density/values/1: must lie in [0, 1e+30] (got -2)"},
+        {"\"values\": [1, 2]", "\"values\": [1, -2]",
+         "dir/scene.json: /objects/0/medium/density/values/1: must lie in [0, 1e+30] (got -2)"},
         {"\"direction\": [0, -2, 0]", "\"direction\": [0, 0, 0]", "/lights/1/direction: must not be the zero vector"},
         {"\"position\": [0, 0, 5]", "\"position\": [0, 0, 1e999]", "dir/scene.json: malformed JSON"},
         {"\"samples\": \"sphere.lsf\"}]", "\"samples\": \"sphere.lsf\"}", "dir/scene.json: malformed JSON"},
@@ -92,7 +94,8 @@ TEST(Scene, MissingFileIsAnError) {
 TEST(Scene, FingerprintFollowsMeshAndMedium) {
     test::ScratchDir dir;
     dir.write("m.obj", "v 0 0 0\n");
-    const std::string scene = R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
+    const std::string scene =
+        R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
       "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": SIGMA, "albedo": 0.5}, "samples": "s.lsf"}]})";
     auto with = [&](const std::string& sigma) {
         std::string s = scene;
@@ -113,7 +116,8 @@ TEST(Scene, FingerprintFollowsBlockerAndGridContents) {
     dir.write("m.obj", "v 0 0 0\n");
     dir.write("b.obj", "v 0 0 0\n");
     dir.write("g.raw", std::string(32, '\1'));
-    const std::string scene = R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
+    const std::string scene =
+        R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
       "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": 1, "albedo": 0.5, "blockers": ["b.obj"],
       "density": {"type": "grid", "file": "g.raw", "dims": [2, 2, 2], "bounds": [[0, 0, 0], [1, 1, 1]]}},
       "samples": "s.lsf"}]})";

@@ -43,14 +43,20 @@ TEST(SphericalHarmonics, MatchesPublishedValuesUpToBand4) {
         if (row[0] != "eval") continue;
         const std::string where = row[4];
         Vec3 d;
-        if (where == "px") d = {1, 0, 0};
-        else if (where == "py") d = {0, 1, 0};
-        else if (where == "pz") d = {0, 0, 1};
-        else if (where.rfind("diag(1", 0) == 0) d = glm::normalize(Vec3(1, 1, 1));
-        else if (where == "phi=pi/4") d = {std::sin(kPi / 3) * std::cos(kPi / 4), std::sin(kPi / 3) * std::sin(kPi / 4), std::cos(kPi / 3)};
+        if (where == "px")
+            d = {1, 0, 0};
+        else if (where == "py")
+            d = {0, 1, 0};
+        else if (where == "pz")
+            d = {0, 0, 1};
+        else if (where.rfind("diag(1", 0) == 0)
+            d = glm::normalize(Vec3(1, 1, 1));
+        else if (where == "phi=pi/4")
+            d = {std::sin(kPi / 3) * std::cos(kPi / 4), std::sin(kPi / 3) * std::sin(kPi / 4), std::cos(kPi / 3)};
         else if (where == "google_test_phi0.4296_theta1.73234")
             d = {std::sin(1.73234) * std::cos(0.4296), std::sin(1.73234) * std::sin(0.4296), std::cos(1.73234)};
-        else FAIL() << "unknown direction " << where;
+        else
+            FAIL() << "unknown direction " << where;
         const int index = std::stoi(row[3]);
         evaluateSh(5, d, basis);
         EXPECT_NEAR(basis[index], std::stod(row.back()), 2e-6) << where << " index " << index;

@@ -10,7 +10,8 @@ namespace {
 
 std::string problem(const std::string& regions, const std::string& extra = "") {
     return R"({"domain": {"min": [0, 0, 0], "max": [2, 1, 1], "cells": [4, 2, 2]},
-               "regions": [)" + regions + R"(], "points": [[1, 0.5, 0.5]])" + extra + "}";
+               "regions": [)" +
+           regions + R"(], "points": [[1, 0.5, 0.5]])" + extra + "}";
 }
 
 TEST(TransportProblem, ReadsEveryKeyWithItsDefaults) {
@@ -31,7 +32,8 @@ TEST(TransportProblem, ReadsEveryKeyWithItsDefaults) {
     EXPECT_EQ(p.maxIterations, 7);
     EXPECT_EQ(p.tolerance, 0.01);
     EXPECT_EQ(p.uncollided, TransportProblem::Uncollided::Swept);
-    const TransportProblem d = parseTransportProblemText(problem(R"({"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1})"), "d.json");
+    const TransportProblem d =
+        parseTransportProblemText(problem(R"({"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1})"), "d.json");
     EXPECT_EQ(d.regions[0].sigmaS, 0.0);
     EXPECT_EQ(d.regions[0].source, 0.0);
     EXPECT_EQ(d.reflective, (std::array<bool, 6>{}));  // vacuum all round
@@ -50,9 +52,11 @@ TEST(TransportProblem, RefusesWhatIsNotAProblem) {
         {problem(region, R"(, "solver": {"uncollided": "first"})"),
          "/solver/uncollided: must be \"auto\", \"marched\" or \"swept\""},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1024, 1024, 1024]}, "regions": [],
-            "points": [[0.5, 0.5, 0.5]]})", "/domain/cells: asks for more than 2^24 cells"},
+            "points": [[0.5, 0.5, 0.5]]})",
+         "/domain/cells: asks for more than 2^24 cells"},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]}, "regions": [],
-            "points": [[0.5, 0.5, 1.5]]})", "/points/0: lies outside the domain"},
+            "points": [[0.5, 0.5, 1.5]]})",
+         "/points/0: lies outside the domain"},
         {R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]}, "regions": [], "points": []})",
          "/points: must hold at least one point"},
     };

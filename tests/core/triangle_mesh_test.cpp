@@ -23,7 +23,8 @@ std::string tetraStl() {
     for (const auto& t : f) {
         s += "facet normal 0 0 0\nouter loop\n";
         for (int k : t)
-            s += "vertex " + std::to_string(p[k].x) + " " + std::to_string(p[k].y) + " " + std::to_string(p[k].z) + "\n";
+            s +=
+                "vertex " + std::to_string(p[k].x) + " " + std::to_string(p[k].y) + " " + std::to_string(p[k].z) + "\n";
         s += "endloop\nendfacet\n";
     }
     return s + "endsolid t\n";
@@ -87,8 +88,7 @@ TEST(TriangleMesh, RejectsBrokenMeshesWithOneLine) {
         {"empty.obj", "# nothing\n", "mesh is empty"},
         {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", "non-finite"},
         // Three faces on one edge (two tetrahedra glued by an edge-sharing fin).
-        {"fin.obj",
-         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 2 5\n",
+        {"fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 2 5\n",
          "mesh is not manifold"},
         // Its header claims more than its bytes can hold: refused before OpenMesh reads it.
         {"garbage.off", "OFF\n3 1\nbroken", "OFF header claims 3 vertices and 1 faces"},

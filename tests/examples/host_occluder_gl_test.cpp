@@ -21,7 +21,8 @@ void expectOccluderHidesTheScattering(const std::string& depthFlag, bool fullRes
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0.6, 5], "target": [0, 0, 0], "fov_y": 35, "width": 96, "height": 96},
       "lights": [{"type": "point", "position": [3, 3, 3], "intensity": [40, 40, 40]}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
                    "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const std::string resolution = fullResolution ? " --full-resolution" : "";
@@ -49,8 +50,8 @@ void expectOccluderHidesTheScattering(const std::string& depthFlag, bool fullRes
                 changed.emplace_back(x, y);
             }
         }
-    EXPECT_GT(hidden, 500u);     // the box really stands in front of lit parts of the sphere
-    EXPECT_GT(unchanged, 2000u); // and leaves the rest of the frame alone
+    EXPECT_GT(hidden, 500u);      // the box really stands in front of lit parts of the sphere
+    EXPECT_GT(unchanged, 2000u);  // and leaves the rest of the frame alone
     if (fullResolution) {
         EXPECT_TRUE(changed.empty()) << changed.size() << " pixels off the box changed";
         return;

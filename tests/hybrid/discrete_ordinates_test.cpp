@@ -136,8 +136,8 @@ TEST(DiscreteOrdinates, VoxelCrossingTubesCarryTheFluxThroughTheFaces) {
     // light entering face a (flux A_a w_a per unit radiance) leaves through the
     // Out faces: sum_Out tube[a][Out] = A_a w_a / V = w_a / h_a.
     const Vec3 edges(1.0, 0.5, 2.0);
-    for (const Vec3& d : {glm::normalize(Vec3(0.3, 0.5, 0.8)), glm::normalize(Vec3(1, 1, 1)),
-                          glm::normalize(Vec3(0.9, 0.05, 0.1))}) {
+    for (const Vec3& d :
+         {glm::normalize(Vec3(0.3, 0.5, 0.8)), glm::normalize(Vec3(1, 1, 1)), glm::normalize(Vec3(0.9, 0.05, 0.1))}) {
         const VoxelCrossing c = voxelCrossing(d, edges);
         for (int b = 0; b < 3; ++b) EXPECT_NEAR(c.share[0][b] + c.share[1][b] + c.share[2][b], 1.0, 1e-9);
         for (int a = 0; a < 3; ++a)
@@ -216,7 +216,8 @@ TEST(Transport, AProblemLargerThanTheMachineIsRefusedWithWhatItNeeds) {
         FAIL() << "no error";
     } catch (const Error& e) {
         const std::string message = e.what();
-        EXPECT_NE(message.find("cannot hold the 1024x1024x16 cells of huge.json: it needs"), std::string::npos) << message;
+        EXPECT_NE(message.find("cannot hold the 1024x1024x16 cells of huge.json: it needs"), std::string::npos)
+            << message;
         EXPECT_NE(message.find("use a smaller grid"), std::string::npos) << message;
     }
 }
@@ -226,9 +227,12 @@ TEST(Transport, AProblemLargerThanTheMachineIsRefusedWithWhatItNeeds) {
 TransportResult cubeSource(double sigma, const std::string& points, const std::string& solver) {
     const std::string s = std::to_string(sigma);
     const std::string text = R"({"domain": {"min": [0, 0, 0], "max": [5, 5, 5], "cells": [25, 25, 25]},
-        "regions": [{"min": [0, 0, 0], "max": [5, 5, 5], "sigma_t": )" + s + R"(},
-                    {"min": [2, 2, 2], "max": [3, 3, 3], "sigma_t": )" + s + R"(, "source": 1.0}],
-        "points": )" + points + R"(, "solver": )" + solver + "}";
+        "regions": [{"min": [0, 0, 0], "max": [5, 5, 5], "sigma_t": )" +
+                             s + R"(},
+                    {"min": [2, 2, 2], "max": [3, 3, 3], "sigma_t": )" +
+                             s + R"(, "source": 1.0}],
+        "points": )" + points +
+                             R"(, "solver": )" + solver + "}";
     return solveTransport(parseTransportProblemText(text, "absorber.json"));
 }
 
@@ -262,11 +266,11 @@ TEST(Transport, MarchedUncollidedFluxHasNoRayEffects) {
     // The problem above at 24 directions, where sweeping it misses the far
     // diagonal by 93% (docs/transport.md): the first-collision source leaves
     // no uncollided light to the directions.
-    const std::vector<Vec3> points{Vec3(2.5, 2.5, 2.5), Vec3(2.5, 2.5, 3.9), Vec3(3.9, 3.9, 3.9),
-                                   Vec3(2.5, 2.5, 4.7), Vec3(4.7, 4.7, 4.7)};
-    const TransportResult r = cubeSource(
-        1.0, "[[2.5, 2.5, 2.5], [2.5, 2.5, 3.9], [3.9, 3.9, 3.9], [2.5, 2.5, 4.7], [4.7, 4.7, 4.7]]",
-        R"({"directions": 24, "bands": 4})");
+    const std::vector<Vec3> points{Vec3(2.5, 2.5, 2.5), Vec3(2.5, 2.5, 3.9), Vec3(3.9, 3.9, 3.9), Vec3(2.5, 2.5, 4.7),
+                                   Vec3(4.7, 4.7, 4.7)};
+    const TransportResult r =
+        cubeSource(1.0, "[[2.5, 2.5, 2.5], [2.5, 2.5, 3.9], [3.9, 3.9, 3.9], [2.5, 2.5, 4.7], [4.7, 4.7, 4.7]]",
+                   R"({"directions": 24, "bands": 4})");
     EXPECT_TRUE(r.uncollidedMarched);  // auto marches with vacuum all round
     EXPECT_TRUE(r.uncollidedWhy.empty());
     for (size_t i = 0; i < points.size(); ++i) {

@@ -114,7 +114,8 @@ TEST(Eikonal, SnellAcrossSmoothedInterface) {
     setIndex(grid, row);
     for (double degrees : {10.0, 30.0, 50.0}) {
         const double t = degrees * kPi / 180.0;
-        const PhotonRay end = marchOne(grid, rayAt(Vec3(0.05, 0.05, 0.05), Vec3(std::sin(t), std::cos(t), 0.0)), 0.5 / side);
+        const PhotonRay end =
+            marchOne(grid, rayAt(Vec3(0.05, 0.05, 0.05), Vec3(std::sin(t), std::cos(t), 0.0)), 0.5 / side);
         const double sinOut = end.velocity.s[0] / std::hypot(end.velocity.s[0], end.velocity.s[1]);
         EXPECT_NEAR(sinOut, std::sin(t) / 1.5, 0.01 * std::sin(t) / 1.5) << degrees << " degrees";
     }

@@ -22,8 +22,7 @@ struct Renders {
     Image ss, lbl, path;  // lbl: the method under test
 };
 
-Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::string& method = "lbl",
-                     double g = 0.0) {
+Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::string& method = "lbl", double g = 0.0) {
     SceneDesc scene;
     scene.file = "sphere.json";
     scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, 32);
@@ -44,7 +43,6 @@ Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::s
     if (pathSamples > 0) r.path = renderWith(findMethod("path"), loaded, settings);
     return r;
 }
-
 
 TEST(LblMethod, WithinTheGoalOfThePathTracerAndFarCloserThanSingleScattering) {
     const Renders r = renderSphere(2.0, 0.8, 2048);
@@ -78,14 +76,14 @@ TEST(MdomMethod, WarnsWhereItMissesTheGoal) {
 
 TEST(LblMethod, AddsNothingWhereNothingScattersTwice) {
     for (const char* method : {"lbl", "mdom"}) {
-    const Renders r = renderSphere(2.0, 0.0, 0, method);
-    double most = 0;
-    for (size_t i = 0; i < r.ss.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            most = std::max(most, double(r.ss.pixels[i][c]));
-            ASSERT_EQ(r.lbl.pixels[i][c], r.ss.pixels[i][c]) << method << " " << i;
-        }
-    EXPECT_EQ(most, 0.0);  // and ss itself is black: albedo 0 scatters nothing at all
+        const Renders r = renderSphere(2.0, 0.0, 0, method);
+        double most = 0;
+        for (size_t i = 0; i < r.ss.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                most = std::max(most, double(r.ss.pixels[i][c]));
+                ASSERT_EQ(r.lbl.pixels[i][c], r.ss.pixels[i][c]) << method << " " << i;
+            }
+        EXPECT_EQ(most, 0.0);  // and ss itself is black: albedo 0 scatters nothing at all
     }
 }
 

@@ -46,7 +46,8 @@ TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
         resolveMethod("magic", scene);
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()).rfind("scene.json: /render/method: method 'magic' is not built", 0), 0u) << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind("scene.json: /render/method: method 'magic' is not built", 0), 0u)
+            << e.what();
     }
 }
 
@@ -155,8 +156,9 @@ TEST_F(OneSphere, SampleSetsOfAnotherObjectAreRejectedFromFilesAndFromMemory) {
         attachSamples(loaded, {foreign});
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_STREQ(e.what(), "in-memory samples of ball: sample file was made for a different mesh or medium than "
-                               "object 'ball'; run lucent preprocess again");
+        EXPECT_STREQ(e.what(),
+                     "in-memory samples of ball: sample file was made for a different mesh or medium than "
+                     "object 'ball'; run lucent preprocess again");
     }
     EXPECT_THROW(attachSamples(loaded, {}), Error);
     writeSampleFile(scene.objects[0].samples, foreign);
@@ -164,7 +166,8 @@ TEST_F(OneSphere, SampleSetsOfAnotherObjectAreRejectedFromFilesAndFromMemory) {
         loadScene(scene, true);
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()).rfind((dir.path() / "ball.lsf").string() + ": sample file was made for", 0), 0u);
+        EXPECT_EQ(std::string(e.what()).rfind((dir.path() / "ball.lsf").string() + ": sample file was made for", 0),
+                  0u);
     }
 }
 

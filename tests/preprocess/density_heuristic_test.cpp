@@ -44,7 +44,8 @@ TEST(DensityHeuristic, DivergenceIsExtinctionTimesReceivableLight) {
     Heuristic h("sphere.obj", sigma, 0.04, 0.45, 128);
     std::vector<Vec3> points;
     Rng rng(8, 8);
-    for (int i = 0; i < 60; ++i) points.push_back((0.95 - 0.35 * rng.uniform()) * (randomRotation(rng) * Vec3(0, 0, 1)));
+    for (int i = 0; i < 60; ++i)
+        points.push_back((0.95 - 0.35 * rng.uniform()) * (randomRotation(rng) * Vec3(0, 0, 1)));
     const auto rho = h.at(points);
     for (size_t i = 0; i < points.size(); ++i) {
         const double expected = sigma * 4 * kPi * rho[i].receivable;

@@ -42,8 +42,7 @@ void expectPoissonAndMaximal(const RadiusSurface& surface, double rMin, double r
         const Vec3 x(rng.uniform(), rng.uniform(), 0.0);
         const double rx = rMin + (rMax - rMin) * x.x;
         double best = kInfinity;
-        for (const auto& s : samples)
-            best = std::min(best, glm::length(x - s.position) / std::max(rx, s.radius));
+        for (const auto& s : samples) best = std::min(best, glm::length(x - s.position) / std::max(rx, s.radius));
         worst = std::max(worst, best);
     }
     EXPECT_LT(worst, 1.0 + finest / rMin);

@@ -48,7 +48,8 @@ double partitionOfUnity(const SampleSet& set, const Vec3& p, double sigmaS) {
     for (size_t i = 0; i < set.size(); ++i) {
         const double s2 = double(set.widths[i]) * set.widths[i];
         const double w = set.scattering[i].g / sigmaS;
-        for (const Vec3 c : {Vec3(set.positions[i]), Vec3(set.image[i])}) sum += w * std::exp(-0.5 * glm::dot(p - c, p - c) / s2);
+        for (const Vec3 c : {Vec3(set.positions[i]), Vec3(set.image[i])})
+            sum += w * std::exp(-0.5 * glm::dot(p - c, p - c) / s2);
     }
     return sum;
 }
@@ -89,8 +90,10 @@ TEST(Preprocessor, LayeredMediumClipsEachGaussianToItsSlab) {
         EXPECT_LE(set.region[i].x, y);
         EXPECT_GE(set.region[i].y, y);
         // Below the middle plane the slab reaches down without end, above it up.
-        if (y < mid) EXPECT_NEAR(set.region[i].y, mid, 1e-5);
-        else EXPECT_NEAR(set.region[i].x, mid, 1e-5);
+        if (y < mid)
+            EXPECT_NEAR(set.region[i].y, mid, 1e-5);
+        else
+            EXPECT_NEAR(set.region[i].x, mid, 1e-5);
         EXPECT_NEAR(set.extinction[i].r, y < mid ? 0.5 : 4.0, 1e-6);
     }
 }
@@ -138,13 +141,15 @@ TEST(Preprocessor, NoSampleInsideABlocker) {
 std::vector<char> preprocessedBytes(int threads, const test::ScratchDir& dir) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     std::vector<std::string> warnings;
-    const VolumeObject layered([] {
-        ObjectDesc d = test::simpleObject(test::modelsDir() / "cube.obj", 1.0, 0.8);
-        d.medium.density.type = DensityDesc::Type::Layers;
-        d.medium.density.axis = 1;
-        d.medium.density.values = {0.5, 4.0};
-        return d;
-    }(), warnings);
+    const VolumeObject layered(
+        [] {
+            ObjectDesc d = test::simpleObject(test::modelsDir() / "cube.obj", 1.0, 0.8);
+            d.medium.density.type = DensityDesc::Type::Layers;
+            d.medium.density.axis = 1;
+            d.medium.density.values = {0.5, 4.0};
+            return d;
+        }(),
+        warnings);
     const auto file = dir.path() / ("t" + std::to_string(threads) + ".lsf");
     writeSampleFile(file, preprocessObject(layered, small()));
     std::ifstream in(file, std::ios::binary);
@@ -180,8 +185,8 @@ namespace {
 // tube (radius 0.02 around a knot 1.8 across) the old sampler never finished.
 std::string torusKnotObj(double scale, double tube, int along, int around) {
     auto curve = [&](double t) {
-        return scale * Vec3((2.0 + std::cos(3.0 * t)) * std::cos(2.0 * t), (2.0 + std::cos(3.0 * t)) * std::sin(2.0 * t),
-                            std::sin(3.0 * t));
+        return scale * Vec3((2.0 + std::cos(3.0 * t)) * std::cos(2.0 * t),
+                            (2.0 + std::cos(3.0 * t)) * std::sin(2.0 * t), std::sin(3.0 * t));
     };
     std::string obj;
     const double h = 1e-4;
@@ -243,14 +248,16 @@ TEST(Preprocessor, UniformScaleGivesTheSameSamplesUpToScale) {
             obj += line;
         }
         for (const auto& t : unit.mesh().triangles)
-            obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+            obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) +
+                   "\n";
         const VolumeObject scaled(test::simpleObject(dir.write("scaled.obj", obj), 2.0 / c, 0.75), warnings);
         const SampleSet b = preprocessObject(scaled, settings);
         ASSERT_EQ(a.size(), b.size()) << "scale " << c;
         double worstPosition = 0.0, worstWidth = 0.0, worstSh = 0.0;
         for (size_t i = 0; i < a.size(); ++i) {
-            worstPosition = std::max(worstPosition, double(glm::length(Vec3(b.positions[i]) / c - Vec3(a.positions[i]))) /
-                                                        a.parameters.meanRadius);
+            worstPosition =
+                std::max(worstPosition, double(glm::length(Vec3(b.positions[i]) / c - Vec3(a.positions[i]))) /
+                                            a.parameters.meanRadius);
             worstWidth = std::max(worstWidth, std::abs(b.widths[i] / c / a.widths[i] - 1.0));
         }
         for (size_t k = 0; k < a.coefficients().size(); ++k)

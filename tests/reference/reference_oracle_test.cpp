@@ -32,8 +32,8 @@ TEST(ReferenceOracle, HenyeyGreensteinSlabMatchesTheClosedForm) {
     const double sigma = 1.5, thickness = 0.8, albedo = 0.9, E = 3.0;
     for (const double g : {0.7, -0.5}) {
         SceneDesc scene;
-        ObjectDesc slab = test::simpleObject(test::writeBox(dir, "slab.obj", Vec3(-30, -30, 0), Vec3(30, 30, thickness)),
-                                             sigma, albedo);
+        ObjectDesc slab = test::simpleObject(
+            test::writeBox(dir, "slab.obj", Vec3(-30, -30, 0), Vec3(30, 30, thickness)), sigma, albedo);
         slab.medium.g = g;
         scene.objects = {slab};
         const Vec3 beam = glm::normalize(Vec3(0.6, 0.0, -0.8));  // mu0 = 0.8
@@ -175,7 +175,8 @@ TEST(ReferenceOracle, SurfaceTermIsEnergyNormalisedPhong) {
         const Vec3 r = 2.0 * cosI * n - l;
         const double cosR = std::max(0.0, glm::dot(r, -view));
         for (int c = 0; c < 3; ++c) {
-            const double brdf = s.diffuse[c] / kPi + s.specular[c] * (s.shininess + 2) / (2 * kPi) * std::pow(cosR, s.shininess);
+            const double brdf =
+                s.diffuse[c] / kPi + s.specular[c] * (s.shininess + 2) / (2 * kPi) * std::pow(cosR, s.shininess);
             const double expected = brdf * 7.0 / d2 * cosI;
             EXPECT_NEAR(got[c], expected, 1e-6 * expected) << c;
         }
@@ -197,7 +198,8 @@ TEST(ReferenceOracle, LightInsideTheObjectMatchesAnIndependentQuadrature) {
     ReferenceSettings settings;
     settings.tolerance = 1e-7;
     const double gx[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
-    const double gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+    const double gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                          0.2369268850561891};
     const Vec3 o(0.0, 0.0, 5.0);
     for (const Vec3 aim : {Vec3(0.0, 0.0, 0.0), Vec3(0.3, 0.3, 0.0), Vec3(-0.4, 0.1, 0.0)}) {
         const Vec3 d = glm::normalize(aim - o);

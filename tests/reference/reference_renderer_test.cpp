@@ -80,7 +80,8 @@ TEST(ReferenceRenderer, SphereUnderPointLightMatchesIndependentQuadrature) {
 
     // 64-panel composite 5-point Gauss-Legendre on the exact sphere.
     const double gx[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
-    const double gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+    const double gw[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                          0.2369268850561891};
     int compared = 0;
     for (int y = 0; y < scene.camera.height; y += 2)
         for (int x = 0; x < scene.camera.width; x += 2) {

@@ -93,8 +93,10 @@ Tally walkSlab(double degrees, double n, double albedo, int maxScatter, int walk
         Rng rng(7, uint64_t(k));
         const PathTracer::Exit e = tracer.walk(origin, w, rng, maxScatter, -1);
         if (!e.escaped) continue;
-        if (e.direction.z < 0.0) tally.transmitted += 1.0 / walks;
-        else tally.reflected += 1.0 / walks;
+        if (e.direction.z < 0.0)
+            tally.transmitted += 1.0 / walks;
+        else
+            tally.reflected += 1.0 / walks;
         if (e.direction.z < 0.0 && glm::length(e.direction - w) < 1e-9) tally.parallelOut += 1.0 / walks;
     }
     return tally;
@@ -178,7 +180,8 @@ TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
     const double lightAngle = radians(30.0), viewAngle = radians(45.0);
     test::ScratchDir dir;
     SceneDesc scene;
-    ObjectDesc o = test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
+    ObjectDesc o =
+        test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
     o.medium.ior = n;
     o.medium.g = g;
     scene.objects = {o};

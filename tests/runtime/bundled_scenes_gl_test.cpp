@@ -38,8 +38,8 @@ TEST_P(BundledScene, MeetsTheGoalOfItsOpticalRadius) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, BundledScene,
-                         ::testing::Values(Case{"cube", 0.10}, Case{"torus-cube", 0.10},
-                                           Case{"layered-cube", 0.25}, Case{"bunny", 0.25}),
+                         ::testing::Values(Case{"cube", 0.10}, Case{"torus-cube", 0.10}, Case{"layered-cube", 0.25},
+                                           Case{"bunny", 0.25}),
                          [](const auto& info) {
                              std::string name = info.param.scene;
                              name.erase(std::remove(name.begin(), name.end(), '-'), name.end());

@@ -50,10 +50,12 @@ std::string spheresObj(const std::vector<std::pair<Vec3, double>>& spheres) {
 // A U in the xy plane (outer [-1, 1]^2, a gap |x| < 0.4 above y = -0.2),
 // extruded over |z| < 0.5; the caps split into rectangles with no T-junction.
 std::string uObj() {
-    const double u[10][2] = {{-1, -1}, {1, -1}, {1, -0.2}, {1, 1}, {0.4, 1}, {0.4, -0.2}, {-0.4, -0.2}, {-0.4, 1}, {-1, 1}, {-1, -0.2}};
+    const double u[10][2] = {{-1, -1},    {1, -1},      {1, -0.2}, {1, 1},  {0.4, 1},
+                             {0.4, -0.2}, {-0.4, -0.2}, {-0.4, 1}, {-1, 1}, {-1, -0.2}};
     std::string obj;
     for (double z : {-0.5, 0.5})
-        for (const auto& p : u) obj += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(z) + "\n";
+        for (const auto& p : u)
+            obj += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(z) + "\n";
     // Counter-clockwise in xy: the z = 0.5 cap (vertices 11-20) faces +z.
     const int cap[8][3] = {{0, 1, 2}, {0, 2, 5}, {0, 5, 6}, {0, 6, 9}, {9, 6, 7}, {9, 7, 8}, {5, 2, 3}, {5, 3, 4}};
     auto face = [&](int a, int b, int c) {

@@ -72,7 +72,8 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     SampleSet set = preprocessObject(objects[0], settings);
     if (c.singleSample) {
         set.positions.resize(1), set.radii.resize(1), set.widths.resize(1), set.scattering.resize(1);
-        set.extinction.resize(1), set.region.resize(1), set.image.resize(1), set.boundary.resize(1), set.truncationError.resize(1);
+        set.extinction.resize(1), set.region.resize(1), set.image.resize(1), set.boundary.resize(1),
+            set.truncationError.resize(1);
         set.sh.resize(set.coefficientsPerSample());
     }
     writeSampleFile(o.samples, set);
@@ -86,9 +87,7 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     return r;
 }
 
-Light pointLight(const Vec3& p, double intensity = 40.0) {
-    return test::pointLight(p, Rgb(intensity));
-}
+Light pointLight(const Vec3& p, double intensity = 40.0) { return test::pointLight(p, Rgb(intensity)); }
 
 void expectFiniteAndNonNegative(const Image& image, const char* what) {
     size_t bad = 0;

@@ -201,8 +201,8 @@ TEST(GaussianCutoff, FragmentCountsArePixels) {
         }
     ASSERT_GT(disc, 1000) << "the disc spans tens of pixels";
     const double box = double(x1 - x0 + 2) * double(y1 - y0 + 2);
-    std::printf("disc %lld pixels (its box and a row and column: %.0f); kept %llu, shaded %llu, invocations %llu\n", disc, box,
-                fragments.kept, fragments.shaded, fragments.invocations);
+    std::printf("disc %lld pixels (its box and a row and column: %.0f); kept %llu, shaded %llu, invocations %llu\n",
+                disc, box, fragments.kept, fragments.shaded, fragments.invocations);
     EXPECT_NEAR(double(fragments.kept) / double(disc), 1.0, 0.01);
     EXPECT_GE(double(fragments.shaded), 1.15 * double(disc));
     EXPECT_LE(double(fragments.shaded), box);

@@ -94,7 +94,8 @@ TEST(GridRefraction, ViewRaysBendAsBouguerSaysAndCarryRadianceOverNSquared) {
             const Vec3 d = rays.direction(x + 0.5, y + 0.5);
             const double b = glm::length(glm::cross(-rays.origin(), d));
             if (b > 0.95) continue;  // the rim: the tessellated silhouette and the shell
-            const double expectBent = 2.0 * std::sqrt(std::max(0.0, 0.81 - b * b / (kIndex * kIndex))) / (kIndex * kIndex);
+            const double expectBent =
+                2.0 * std::sqrt(std::max(0.0, 0.81 - b * b / (kIndex * kIndex))) / (kIndex * kIndex);
             const double expectStraight = 2.0 * std::sqrt(std::max(0.0, 0.81 - b * b));
             const double gotBent = bent.at(x, y).g, gotStraight = straight.at(x, y).g;
             bentError += std::pow(gotBent - expectBent, 2);
@@ -106,9 +107,10 @@ TEST(GridRefraction, ViewRaysBendAsBouguerSaysAndCarryRadianceOverNSquared) {
         }
     const double bentRmse = std::sqrt(bentError / norm), straightRmse = std::sqrt(straightError / straightNorm);
     const double wrongRmse = std::sqrt(bentAgainstStraight / straightNorm);
-    std::printf("%d pixels: bent %.2f%% from Bouguer's chord / n^2, straight %.2f%% from the straight chord; "
-                "bent %.1f%% from the straight chord\n",
-                pixels, 100.0 * bentRmse, 100.0 * straightRmse, 100.0 * wrongRmse);
+    std::printf(
+        "%d pixels: bent %.2f%% from Bouguer's chord / n^2, straight %.2f%% from the straight chord; "
+        "bent %.1f%% from the straight chord\n",
+        pixels, 100.0 * bentRmse, 100.0 * straightRmse, 100.0 * wrongRmse);
     // 3%: the source's edge and the index's shell, trilinear on 96^3 voxels.
     EXPECT_LT(bentRmse, 0.03);
     EXPECT_LT(straightRmse, 0.03);

@@ -37,7 +37,8 @@ struct PlacedBox {
         sun.direction = glm::normalize(Vec3(-1.0, -0.5, -0.3));
         sun.power = Rgb(1.5);
         scene.lights = {bulb, sun};
-        ObjectDesc o = test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-0.6, -0.5, -0.4), Vec3(0.6, 0.5, 0.4)), 1.2, 0.75);
+        ObjectDesc o =
+            test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-0.6, -0.5, -0.4), Vec3(0.6, 0.5, 0.4)), 1.2, 0.75);
         o.medium.density.type = DensityDesc::Type::Layers;
         o.medium.density.axis = 0;
         o.medium.density.values = {0.5, 1.0, 0.75};
@@ -62,7 +63,8 @@ TEST(PlacedObject, SsMeetsTheGoalOfItsOpticalRadiusWithoutNewPreprocessing) {
         compareImages(test::renderSs(box.scene, false), ReferenceRenderer(box.scene, placed).render(reference));
     // The optical radius grows with the scale: the object's own times 1.7.
     const double goal = test::ssGoalForOpticalRadius(test::opticalRadius(own[0]) * kPlacement.scale);
-    std::printf("placed layered box: relative RMSE %.4f (goal %.2f), mean ratio %.4f\n", e.relativeRmse, goal, e.meanRatio);
+    std::printf("placed layered box: relative RMSE %.4f (goal %.2f), mean ratio %.4f\n", e.relativeRmse, goal,
+                e.meanRatio);
     EXPECT_GT(e.pixels, 800u);
     EXPECT_LT(e.relativeRmse, goal);
 }
@@ -89,7 +91,8 @@ TEST(PlacedObject, SsEqualsTheUnplacedObjectSeenFromTheObjectsOwnSpace) {
     const auto context = OffscreenContext::create(GlBackend::Auto);
     const int size = box.scene.camera.width;
     OffscreenFrame frame(size, size);
-    auto draw = [&](const SceneDesc& scene, ScatteringRenderer& renderer, const Bounds3& bounds, float extinctionScale) {
+    auto draw = [&](const SceneDesc& scene, ScatteringRenderer& renderer, const Bounds3& bounds,
+                    float extinctionScale) {
         renderer.setLights(scene.lights);
         frame.bindAndClear();
         DrawOptions options;

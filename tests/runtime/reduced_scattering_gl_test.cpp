@@ -50,8 +50,10 @@ TEST_P(ReducedScattering, KeepsTheErrorOfTheFullResolution) {
         std::printf("%s at 1/%d: relative RMSE %.4f over %zu pixels\n", GetParam(), scale, e.relativeRmse, e.pixels);
         EXPECT_GT(e.pixels, 5000u);
         EXPECT_LT(e.relativeRmse, test::ssGoalRelativeRmse(objects));
-        if (scale == 1) full = e.relativeRmse;
-        else EXPECT_LT(e.relativeRmse, full + 0.01) << "at 1/" << scale;
+        if (scale == 1)
+            full = e.relativeRmse;
+        else
+            EXPECT_LT(e.relativeRmse, full + 0.01) << "at 1/" << scale;
     }
 }
 

@@ -25,8 +25,10 @@ TEST(RendererObjects, RemovingAndGivingNewSamplesMatchARendererBuiltThatWay) {
     behindLeft.power = Rgb(40.0);
     scene.lights = {bulb, behindLeft};
     test::ScratchDir dir;
-    ObjectDesc left = test::simpleObject(test::writeBox(dir, "left.obj", Vec3(-1.2, -0.4, -0.4), Vec3(-0.4, 0.4, 0.4)), 2.0, 0.8);
-    ObjectDesc right = test::simpleObject(test::writeBox(dir, "right.obj", Vec3(0.4, -0.4, -0.4), Vec3(1.2, 0.4, 0.4)), 2.0, 0.8);
+    ObjectDesc left =
+        test::simpleObject(test::writeBox(dir, "left.obj", Vec3(-1.2, -0.4, -0.4), Vec3(-0.4, 0.4, 0.4)), 2.0, 0.8);
+    ObjectDesc right =
+        test::simpleObject(test::writeBox(dir, "right.obj", Vec3(0.4, -0.4, -0.4), Vec3(1.2, 0.4, 0.4)), 2.0, 0.8);
     ObjectDesc denser = right;
     denser.medium.sigmaT = Rgb(5.0);
     scene.objects = {left, right, denser};

@@ -215,12 +215,12 @@ TEST(BlockerShadowViews, EachFaceSeesItsAxisAndTheDirectionalViewEnclosesTheBloc
 // The default reduction of the scattering follows the samples' radius on screen:
 // a reduced pixel at most 0.75 of it (docs/runtime.md has the measurements).
 TEST(ScatterScale, FollowsTheSamplesRadiusOnScreen) {
-    EXPECT_EQ(scatterScaleFor(1.4), 1);   // CGAL's elephant at 256x256
+    EXPECT_EQ(scatterScaleFor(1.4), 1);  // CGAL's elephant at 256x256
     EXPECT_EQ(scatterScaleFor(2.66), 1);
     EXPECT_EQ(scatterScaleFor(2.67), 2);
     EXPECT_EQ(scatterScaleFor(5.3), 2);
     EXPECT_EQ(scatterScaleFor(5.34), 4);
-    EXPECT_EQ(scatterScaleFor(8.3), 4);   // the bunny at 800x800
+    EXPECT_EQ(scatterScaleFor(8.3), 4);  // the bunny at 800x800
     EXPECT_EQ(scatterScaleFor(kInfinity), 4);
     EXPECT_EQ(scatterScaleFor(0.0), 1);
     EXPECT_EQ(scatterScaleFor(std::nan("")), 1);

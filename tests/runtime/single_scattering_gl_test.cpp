@@ -64,9 +64,11 @@ TEST(SingleScattering, DefaultQualitySphereMeetsItsGoal) {
     sphere.preprocess(qualityPreset("default"));
     const ImageError all = compareImages(sphere.ss(), sphere.reference());
     const ImageError interior = compareImages(sphere.ss(), sphere.reference(), 3);
-    std::printf("sphere, default quality: relative RMSE %.4f, MARE %.4f, mean ratio %.4f; 3 px from the silhouette: "
-                "%.4f, %.4f\n", all.relativeRmse, all.meanAbsoluteRelativeError, all.meanRatio, interior.relativeRmse,
-                interior.meanAbsoluteRelativeError);
+    std::printf(
+        "sphere, default quality: relative RMSE %.4f, MARE %.4f, mean ratio %.4f; 3 px from the silhouette: "
+        "%.4f, %.4f\n",
+        all.relativeRmse, all.meanAbsoluteRelativeError, all.meanRatio, interior.relativeRmse,
+        interior.meanAbsoluteRelativeError);
     // The goal (sigma_t 2: 10%), over the whole silhouette and inside it.
     const double goal = test::ssGoalRelativeRmse(sphere.objects);
     ASSERT_EQ(goal, 0.10);
@@ -105,8 +107,8 @@ TEST(SingleScattering, SurfaceTermIsTheReferencesWithTheSameNormals) {
     }
     const ImageError term = compareImages(ssSurface, referenceSurface, 1);
     const ImageError all = compareImages(ssWith, withSurface);
-    std::printf("surface term: relative RMSE %.2e (1 px inside the silhouette); whole image: %.4f\n",
-                term.relativeRmse, all.relativeRmse);
+    std::printf("surface term: relative RMSE %.2e (1 px inside the silhouette); whole image: %.4f\n", term.relativeRmse,
+                all.relativeRmse);
     EXPECT_GT(term.pixels, 2000u);
     EXPECT_LT(term.relativeRmse, 1e-3);  // measured 9.4e-6
     EXPECT_LT(all.relativeRmse, test::ssGoalRelativeRmse(sphere.objects));
@@ -208,7 +210,8 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
         // Through the right sphere onto the left: the scene does test the shadow.
         EXPECT_GT(fromSh.relativeRmse, goal) << "the SH cannot dim one object's light by another";
         ASSERT_EQ(said.size(), 1u);
-        EXPECT_NE(said[0].find("object 'right' may lie between light 0 and object 'left'"), std::string::npos) << said[0];
+        EXPECT_NE(said[0].find("object 'right' may lie between light 0 and object 'left'"), std::string::npos)
+            << said[0];
     }
 }
 

@@ -28,7 +28,8 @@ inline Image renderSs(const SceneDesc& scene, bool surface = true, const std::st
 inline ImageError ssAgainstReference(const SceneDesc& scene, int margin = 0) {
     std::vector<std::string> warnings;
     const auto objects = loadObjects(scene, warnings);
-    for (const VolumeObject& o : objects) writeSampleFile(o.desc().samples, preprocessObject(o, qualityPreset("default")));
+    for (const VolumeObject& o : objects)
+        writeSampleFile(o.desc().samples, preprocessObject(o, qualityPreset("default")));
     ReferenceSettings reference;
     reference.tolerance = 1e-4;
     reference.surface = false;

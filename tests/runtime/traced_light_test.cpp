@@ -13,9 +13,7 @@
 namespace lucent {
 namespace {
 
-Light pointLight(const Vec3& p) {
-    return test::pointLight(p, Rgb(1.0));
-}
+Light pointLight(const Vec3& p) { return test::pointLight(p, Rgb(1.0)); }
 
 SampleSet samplesAt(const std::vector<glm::vec3>& positions) {
     SampleSet s;
@@ -40,9 +38,8 @@ TEST(TracedLight, OpticalDepthIsSigmaTimesThePathInside) {
     sun.power = Rgb(1.0);
     const std::vector<Light> lights = {pointLight(Vec3(5.0, 0.0, 0.0)), pointLight(Vec3(0.5, 0.0, 0.0)), sun};
     // Samples at the centre and at (0, 0.5, -0.5).
-    const std::vector<glm::vec4> d =
-        tracedOpticalDepths({{&box, Similarity{}}}, samplesAt({glm::vec3(0.0f), glm::vec3(0.0f, 0.5f, -0.5f)}),
-                            Similarity{}, lights);
+    const std::vector<glm::vec4> d = tracedOpticalDepths(
+        {{&box, Similarity{}}}, samplesAt({glm::vec3(0.0f), glm::vec3(0.0f, 0.5f, -0.5f)}), Similarity{}, lights);
     ASSERT_EQ(d.size(), 6u);
     expectDepth(d[0], Rgb(1.0, 2.0, 3.0), "centre to a light outside: 1 inside");
     expectDepth(d[1], Rgb(0.5, 1.0, 1.5), "centre to a light inside: 0.5, all inside");
@@ -77,9 +74,9 @@ TEST(TracedLight, ABlockerOnTheWayStopsTheLight) {
     desc.medium.blockers = {test::writeBox(dir, "stone.obj", Vec3(0.4, -0.1, -0.1), Vec3(0.6, 0.1, 0.1))};
     std::vector<std::string> warnings;
     const VolumeObject box(desc, warnings);
-    const std::vector<glm::vec4> d = tracedOpticalDepths({{&box, Similarity{}}}, samplesAt({glm::vec3(0.0f)}),
-                                                         Similarity{}, {pointLight(Vec3(5.0, 0.0, 0.0)),
-                                                                        pointLight(Vec3(-5.0, 0.0, 0.0))});
+    const std::vector<glm::vec4> d =
+        tracedOpticalDepths({{&box, Similarity{}}}, samplesAt({glm::vec3(0.0f)}), Similarity{},
+                            {pointLight(Vec3(5.0, 0.0, 0.0)), pointLight(Vec3(-5.0, 0.0, 0.0))});
     ASSERT_EQ(d.size(), 2u);
     EXPECT_EQ(d[0].w, 1.0f) << "the blocker lies between the sample and the light";
     expectDepth(d[1], Rgb(1.0), "the other way is clear");

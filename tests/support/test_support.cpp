@@ -43,7 +43,8 @@ std::filesystem::path writeBox(const ScratchDir& dir, const std::string& name, c
         std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", v.x, v.y, v.z);
         obj += line;
     }
-    obj += "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+    obj +=
+        "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
     return dir.write(name, obj);
 }
 
@@ -76,8 +77,8 @@ ObjectDesc simpleObject(const std::filesystem::path& mesh, double sigmaT, double
 RunResult runLucent(const std::string& args, const std::string& environment) {
     ScratchDir scratch;
     const auto errFile = scratch.path() / "stderr.txt", outFile = scratch.path() / "stdout.txt";
-    const std::string command = environment + " " + std::string(LUCENT_BINARY) + " " + args + " > " +
-                                outFile.string() + " 2> " + errFile.string();
+    const std::string command = environment + " " + std::string(LUCENT_BINARY) + " " + args + " > " + outFile.string() +
+                                " 2> " + errFile.string();
     const int status = std::system(command.c_str());
     auto read = [](const std::filesystem::path& file) {
         std::ifstream in(file);
@@ -95,7 +96,10 @@ std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file)
     bool header = true;
     while (std::getline(in, line)) {
         if (line.empty() || line[0] == '#') continue;
-        if (header) { header = false; continue; }
+        if (header) {
+            header = false;
+            continue;
+        }
         std::vector<std::string> cells;
         std::stringstream ss(line);
         std::string cell;

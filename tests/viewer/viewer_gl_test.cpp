@@ -29,13 +29,15 @@ TEST(Viewer, ScriptedLightMoveChangesTheScreenshotWhereItShould) {
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 96, "height": 96},
       "lights": [{"type": "point", "position": [3, 0, 2], "intensity": [40, 40, 40]}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
                    "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto before = dir.path() / "before.pfm", after = dir.path() / "after.pfm";
     const auto script = dir.write("moves.txt", "screenshot " + before.string() +
                                                    "\nlight 0 position -3 0 2  # to the other side\n"
-                                                   "orbit 0 0\nscreenshot " + after.string() + "\nquit\n");
+                                                   "orbit 0 0\nscreenshot " +
+                                                   after.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 320x240x24'");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
@@ -55,13 +57,15 @@ TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 96, "height": 96},
       "lights": [{"type": "point", "position": [3, 2, 2], "intensity": [40, 40, 40]}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
                    "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
-    const auto view = dir.path() / "view.png", window = dir.path() / "window.png", brighter = dir.path() / "brighter.png";
-    const auto script = dir.write("shots.txt", "exposure -1\nscreenshot " + view.string() + "\nscreenshot " +
-                                                   window.string() + " panel\nexposure 0\nscreenshot " +
-                                                   brighter.string() + "\nquit\n");
+    const auto view = dir.path() / "view.png", window = dir.path() / "window.png",
+               brighter = dir.path() / "brighter.png";
+    const auto script =
+        dir.write("shots.txt", "exposure -1\nscreenshot " + view.string() + "\nscreenshot " + window.string() +
+                                   " panel\nexposure 0\nscreenshot " + brighter.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 1024x768x24'");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
@@ -83,7 +87,10 @@ TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
     EXPECT_EQ(same, size_t(96 * 96)) << "the view's pixels, uncovered, right of the panel";
     EXPECT_GT(panelPixels, size_t(panel * 96 / 2)) << "the panel is drawn";
     // +1 stop: twice the linear value wherever neither is clipped or lost in quantisation.
-    auto linear = [](int c) { double s = c / 255.0; return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4); };
+    auto linear = [](int c) {
+        double s = c / 255.0;
+        return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+    };
     double ratioSum = 0.0;
     size_t compared = 0;
     for (int y = 0; y < 96; ++y)
@@ -104,15 +111,18 @@ TEST(Viewer, MovingTheSelectedObjectPlacesItAsTheScenesTransformDoes) {
     const std::string head = R"({
       "camera": {"position": [0, 1, 5], "target": [0.3, 0, 0], "fov_y": 35, "width": 96, "height": 96},
       "lights": [{"type": "point", "position": [3, 2, 2], "intensity": [40, 40, 40]}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "bunny.off").string() + R"(",
+      "objects": [{"mesh": ")" +
+                             (test::modelsDir() / "bunny.off").string() + R"(",
                    "medium": {"sigma_t": 4.0, "albedo": 0.75}, "samples": "s.lsf")";
     const auto scene = dir.write("scene.json", head + "}]}");
     const auto placed = dir.write("placed.json", head + R"(,
       "transform": {"scale": 1.3, "rotate": {"axis": [0, 1, 0], "degrees": 40}, "translate": [0.6, 0, 0]}}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto shot = dir.path() / "moved.pfm", rendered = dir.path() / "rendered.pfm";
-    const auto script = dir.write("move.txt", "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\n"
-                                              "screenshot " + shot.string() + "\nquit\n");
+    const auto script = dir.write("move.txt",
+                                  "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\n"
+                                  "screenshot " +
+                                      shot.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 640x480x24'");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
@@ -137,7 +147,8 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 64, "height": 64},
       "lights": [{"type": "point", "position": [3, 3, 3], "intensity": [40, 40, 40]}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
                    "medium": {"sigma_t": 2.0, "albedo": 0.75}, "samples": "s.lsf"}],
       "render": {"surface": false}})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
@@ -145,10 +156,10 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
     const auto first = dir.path() / "first.pfm", done = dir.path() / "done.pfm";
     // mdom iterates one scattering generation per frame: the first frame shows
     // one generation, `wait` lets it converge.
-    const auto script = dir.write("toggle.txt", "surface off\nscreenshot " + off.string() + "\nmultiple on\nscreenshot " +
-                                                    on.string() + "\nmultiple off\nscreenshot " + offAgain.string() +
-                                                    "\nmultiple mdom\nscreenshot " + first.string() +
-                                                    "\nwait\nscreenshot " + done.string() + "\nquit\n");
+    const auto script =
+        dir.write("toggle.txt", "surface off\nscreenshot " + off.string() + "\nmultiple on\nscreenshot " + on.string() +
+                                    "\nmultiple off\nscreenshot " + offAgain.string() + "\nmultiple mdom\nscreenshot " +
+                                    first.string() + "\nwait\nscreenshot " + done.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 320x240x24'");
     ASSERT_EQ(run.exitCode, 0) << run.stderrText;
@@ -165,8 +176,9 @@ TEST(Viewer, MultipleScatteringToggleAddsTheLightSingleScatteringMisses) {
     // Without an OpenCL device the toggle warns and the viewer goes on without it.
     const auto noIcds = dir.path() / "no-icds";
     std::filesystem::create_directory(noIcds);
-    const auto without = test::runLucent("view " + scene.string() + " --script " + script.string(),
-                                         "OCL_ICD_VENDORS=" + noIcds.string() + " xvfb-run -a -s '-screen 0 320x240x24'");
+    const auto without =
+        test::runLucent("view " + scene.string() + " --script " + script.string(),
+                        "OCL_ICD_VENDORS=" + noIcds.string() + " xvfb-run -a -s '-screen 0 320x240x24'");
     ASSERT_EQ(without.exitCode, 0) << without.stderrText;
     EXPECT_NE(without.stderrText.find("lucent: warning: view: no multiple scattering: no OpenCL device found"),
               std::string::npos)
@@ -180,7 +192,8 @@ TEST(Viewer, BadScriptLineIsOneClearError) {
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 32, "height": 32},
       "lights": [{"type": "point", "position": [3, 0, 2], "intensity": 4}],
-      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() + R"(",
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
                    "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 300").exitCode, 0);
     const auto script = dir.write("bad.txt", "orbit 10 0\nlight 3 position 0 0 0\n");
