@@ -24,7 +24,6 @@ git diff --quiet HEAD -- || commit="$commit + uncommitted changes (not in the cl
 work=$(mktemp -d /tmp/lucent-ci-XXXXXX)
 [ "$keep" -eq 1 ] || trap 'rm -rf "$work"' EXIT
 git clone -q "$(pwd)" "$work/lucent"
-cp -r ../shared "$work/shared" 2>/dev/null || true  # CI lays shared/ beside the clone
 
 step() {  # step NAME COMMAND...: runs it in the clone, logs it, prints seconds and tests
   local name=$1 start end log="$work/$1.log"; shift
