@@ -39,8 +39,6 @@ bool glIsSoftware() {
            name.find("swrast") != std::string::npos;
 }
 
-void finishGl() { glFinish(); }
-
 double timeGlWork(const std::function<void()>& work) {
     glFinish();
     const Stopwatch stopwatch;

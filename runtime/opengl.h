@@ -27,9 +27,6 @@ std::string glRenderer();
 // Whether that renderer rasterises on the CPU (llvmpipe, softpipe, swrast).
 bool glIsSoftware();
 
-// Waits until the current context has done all the work it was given (glFinish).
-void finishGl();
-
 // The wall time of the OpenGL work that work() gives, in seconds, counted as a
 // frame's time is: the queue drained before it starts and after it ends, since
 // the driver runs the commands on threads of its own, later.
