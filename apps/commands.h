@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -21,6 +22,15 @@ Command addViewCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addTransportCommand(CLI::App& app);
 Command addPresetsCommand(CLI::App& app);
+Command addMethodsCommand(CLI::App& app);
+
+// Adds every method's own options (methods/method_table.h, offeredOptions) to
+// sub, each checked against its declaration; values and flags receive them by name.
+void addMethodOptions(CLI::App& sub, std::map<std::string, std::string>& values,
+                      std::map<std::string, CLI::Option*>& flags);
+// Those of them given on the command line.
+std::map<std::string, std::string> givenMethodOptions(const std::map<std::string, std::string>& values,
+                                                      const std::map<std::string, CLI::Option*>& flags);
 
 // A number in [lo, hi] and finite: CLI::Range lets NaN through, since every
 // comparison with NaN is false.

@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     std::map<CLI::App*, lucent::Command> commands;
     for (auto add :
          {lucent::addPreprocessCommand, lucent::addRenderCommand, lucent::addViewCommand, lucent::addInfoCommand,
-          lucent::addBenchCommand, lucent::addTransportCommand, lucent::addPresetsCommand}) {
+          lucent::addBenchCommand, lucent::addTransportCommand, lucent::addPresetsCommand, lucent::addMethodsCommand}) {
         const size_t before = app.get_subcommands({}).size();
         lucent::Command run = add(app);
         commands[app.get_subcommands({})[before]] = std::move(run);

@@ -1,6 +1,7 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "apps/commands.h"
@@ -16,14 +17,12 @@ namespace lucent {
 
 Command addRenderCommand(CLI::App& app) {
     struct Options {
-        std::string scene, output, method, backend, light = "traced";
-        int width = 0, height = 0, threads = 0, samples = 64, maxScatter = 1 << 20, grid = 64, directions = 48,
-            moments = 16;
-        double noise = 0.0;
-        std::string seed = "1";
+        std::string scene, output, method, seed = "1";
+        int width = 0, height = 0, threads = 0;
         bool noSurface = false;
-        double tolerance = 1e-3;
         float exposure = 0.0f;
+        std::map<std::string, std::string> methodValues;  // the methods' own options, by name
+        std::map<std::string, CLI::Option*> methodOptions;
     };
     auto o = std::make_shared<Options>();
     CLI::App* sub = app.add_subcommand("render", "Render one frame of a scene offscreen");
@@ -33,40 +32,14 @@ Command addRenderCommand(CLI::App& app) {
     for (const MethodEntry& m : methodTable()) methodHelp += "\n  " + m.name + ": " + m.summary;
     methodHelp += "\n  auto: picks one for the scene and says why";
     sub->add_option("--method", o->method, methodHelp)->check(CLI::IsMember(methodNames()));
-    sub->add_option("--backend", o->backend, "OpenGL backend for GL methods: osmesa or egl")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
     sub->add_option("--width", o->width, "Image width (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", o->height, "Image height (default: the scene camera's)")->check(CLI::Range(1, 16384));
     sub->add_flag("--no-surface", o->noSurface, "Leave out the reflected surface term");
-    sub->add_option("--light", o->light,
-                    "Sample methods: the light reaching each sample traced through the objects (traced, default) or "
-                    "read from its SH attenuation (sh: the thesis; blurs narrow shadows, no shadows between objects)")
-        ->check(CLI::IsMember({"traced", "sh"}));
-    sub->add_option("--tolerance", o->tolerance, "Relative quadrature tolerance of --method reference")
-        ->check(finiteRange(1e-8, 0.5));
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    sub->add_option("--samples", o->samples, "Paths per pixel of --method path (default 64)")
-        ->check(CLI::Range(1, 1 << 24));
-    sub->add_option("--grid", o->grid, "Voxels along each object's longest side for --method lbl and mdom (default 64)")
-        ->check(CLI::Range(8, 1024));
-    sub->add_option("--directions", o->directions,
-                    "Propagation directions of --method mdom: 24, 48, 80, 120 or 168 (default 48)")
-        ->check(CLI::IsMember({24, 48, 80, 120, 168}));
-    sub->add_option("--moments", o->moments,
-                    "Spherical-harmonic moments of the scattering source per voxel of --method mdom: 4, 9, 16, 25 "
-                    "or 36 (default 16)")
-        ->check(CLI::IsMember({4, 9, 16, 25, 36}));
-    sub->add_option("--noise", o->noise,
-                    "--method path: sample each pixel until the standard error of its mean is at most this share of "
-                    "it, up to --samples (0: always --samples)")
-        ->check(finiteRange(0.0, 1.0));
-    sub->add_option("--max-scatter", o->maxScatter,
-                    "Collisions per path of --method path (1: single scattering; default unlimited)")
-        ->check(CLI::Range(1, 1 << 20));
-    sub->add_option("--seed", o->seed, "Random seed of --method path; the same seed gives the same image")
-        ->check(unsigned64());
+    sub->add_option("--seed", o->seed, "Random seed; the same seed gives the same image")->check(unsigned64());
     sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic)")
         ->check(finiteRange(0.0, 1e30));
+    addMethodOptions(*sub, o->methodValues, o->methodOptions);
     return [o] {
         SceneDesc scene = parseScene(o->scene);
         checkOutputIsNoInput(o->output, inputFilesOf(scene, true));
@@ -80,18 +53,13 @@ Command addRenderCommand(CLI::App& app) {
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
         MethodSettings settings;
         settings.surface = !o->noSurface && scene.render.surface;
-        settings.tolerance = o->tolerance;
         settings.threads = o->threads;
-        settings.backend = o->backend;
-        settings.tracedLight = o->light == "traced";
-        settings.samplesPerPixel = o->samples;
-        settings.maxScatter = o->maxScatter;
-        settings.gridResolution = o->grid;
-        settings.directions = o->directions;
-        settings.moments = o->moments;
-        settings.noiseTarget = o->noise;
         settings.seed = std::stoull(o->seed);
-        const std::unique_ptr<Method> renderer = method.entry->create();
+        std::vector<std::string> ignored;
+        const MethodOptions options = methodOptions(
+            *method.entry, givenMethodOptions(o->methodValues, o->methodOptions), !method.reason.empty(), ignored);
+        printWarnings(ignored);
+        const std::unique_ptr<Method> renderer = method.entry->create(options);
         renderer->prepare(scene, settings);  // while the scene loads
         LoadedScene loaded = loadScene(scene, method.entry->needsSamples);
         printWarnings(loaded.warnings);

@@ -122,8 +122,10 @@ std::vector<SweepRow> runAccuracyBench(const std::vector<std::filesystem::path>&
                      scene.camera.width, scene.camera.height, options.referenceTolerance);
         MethodSettings referenceSettings;
         referenceSettings.surface = false;
-        referenceSettings.tolerance = options.referenceTolerance;
-        const Image reference = renderWith(findMethod("reference"), loaded, referenceSettings);
+        const MethodEntry& exact = findMethod("reference");
+        const Image reference =
+            renderWith(exact, *exact.create(MethodOptions(exact.options).set("tolerance", options.referenceTolerance)),
+                       loaded, referenceSettings);
 
         const ViewSetup view = viewSetupFor(scene.camera, bounds);
         OffscreenFrame frame(view.width, view.height);

@@ -115,16 +115,17 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
             MethodSettings settings;
             settings.surface = false;
-            settings.samplesPerPixel = spp;
+            const MethodEntry& pathEntry = findMethod("path");
+            const MethodOptions paths = MethodOptions(pathEntry.options).set("samples", spp);
             // The truth twice, with independent seeds: its own noise is
             // measured and taken out of every error (luminanceRelativeRmse of
             // three images). path_s is the time of one of them.
             Stopwatch stopwatch;
             settings.seed = 1;
-            const Image pathA = renderWith(findMethod("path"), loaded, settings);
+            const Image pathA = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
             const double pathSeconds = stopwatch.seconds();
             settings.seed = 2;
-            const Image pathB = renderWith(findMethod("path"), loaded, settings);
+            const Image pathB = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
             Image path = pathA;
             for (size_t i = 0; i < path.pixels.size(); ++i) path.pixels[i] = 0.5f * (pathA.pixels[i] + pathB.pixels[i]);
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
@@ -132,11 +133,13 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
             for (int grid : grids)
                 for (int n : method == "mdom" ? directions : std::vector<int>{0})
                     for (int m : method == "mdom" ? moments : std::vector<int>{0}) {
-                        settings.gridResolution = grid;
-                        if (n > 0) settings.directions = n;
-                        if (m > 0) settings.moments = m;
+                        const MethodEntry& entry = findMethod(method);
+                        MethodOptions options(entry.options);
+                        options.set("grid", grid);
+                        if (n > 0) options.set("directions", n);
+                        if (m > 0) options.set("moments", m);
                         stopwatch.restart();
-                        const Image image = renderWith(findMethod(method), loaded, settings);
+                        const Image image = renderWith(entry, *entry.create(options), loaded, settings);
                         const double seconds = stopwatch.seconds();
                         const NoisyReferenceError e = luminanceRelativeRmse(image, pathA, pathB);
                         out.print(

@@ -12,6 +12,7 @@
 
 #include "core/image.h"
 #include "core/loaded_scene.h"
+#include "core/method_options.h"
 
 namespace lucent {
 
@@ -22,23 +23,15 @@ namespace lucent {
 // 3e-2 moves them by up to 0.03 points, 0.1 by up to 0.3.
 inline constexpr double kDefaultGaussianCutoff = 1e-2;
 
-// What a caller may ask of any method; each method reads the fields it knows.
+// What every method shares. What only some methods take (paths per pixel, the
+// grid, the OpenGL backend) each method declares as its options (MethodEntry::
+// options, core/method_options.h) and reads when it is created.
 struct MethodSettings {
-    bool surface = true;      // add the reflected surface term of objects that have one
-    int threads = 0;          // CPU methods: worker threads (0: all cores)
-    double tolerance = 1e-3;  // quadrature methods: relative error target per pixel
-    std::string backend;      // OpenGL methods: "egl", "osmesa" or "" (EGL, then OSMesa)
+    bool surface = true;  // add the reflected surface term of objects that have one
+    int threads = 0;      // worker threads of the CPU work (0: all cores)
+    uint64_t seed = 1;    // random numbers: the same seed gives the same image
     double cutoff =
         kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
-    bool tracedLight =
-        true;  // sample methods: each sample's light traced, not read from its SH (DrawOptions::tracedLight)
-    int samplesPerPixel = 64;  // Monte Carlo methods: paths per pixel
-    int maxScatter = 1 << 20;  // Monte Carlo methods: collisions per path (1: single scattering)
-    double noiseTarget = 0.0;  // Monte Carlo methods: relative standard error per pixel (0: samplesPerPixel each)
-    uint64_t seed = 1;         // Monte Carlo methods: the same seed gives the same image
-    int gridResolution = 64;   // grid methods: voxels along each object's longest side
-    int directions = 48;       // discrete ordinates: propagation directions (24, 48, 80, 120, 168)
-    int moments = 16;          // discrete ordinates: spherical-harmonic moments stored per voxel (4 ... 36)
 };
 
 class Method {
@@ -79,7 +72,11 @@ struct MethodEntry {
     bool interactive = false;   // fast enough for the viewer and for auto
     // Why the method cannot run here (no device, no driver), or empty when it can.
     std::function<std::string()> unavailableReason;
-    std::function<std::unique_ptr<Method>()> create;
+    std::vector<OptionSpec> options;  // what only this method takes, declared by its class
+    // The method with its options read: MethodOptions(options) with what the caller set.
+    std::function<std::unique_ptr<Method>(const MethodOptions&)> create;
+    // The method with every option at its default.
+    std::unique_ptr<Method> createDefault() const { return create(MethodOptions(options)); }
 };
 
 }  // namespace lucent

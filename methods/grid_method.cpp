@@ -4,14 +4,21 @@
 
 namespace lucent {
 
-std::vector<std::string> GridMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
-    return SsMethod::sampleLimitations(scene, settings);
+std::vector<OptionSpec> GridMethod::options() {
+    std::vector<OptionSpec> out = SsOptions::specs();
+    out.push_back(OptionSpec::integer("grid", 64, 8, 1024,
+                                      "voxels along each object's longest side; memory and time grow as its cube"));
+    return out;
+}
+
+std::vector<std::string> GridMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
+    return SsMethod::sampleLimitations(scene, ss_);
 }
 
 Image GridMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
     std::string device, backend;
     const std::vector<ScatteringGrid> grids = solveGrids(scene, settings, device);
-    Image image = renderSingleScattering(scene, settings, grids, backend);
+    Image image = renderSingleScattering(scene, settings, ss_, grids, backend);
     servedBy_ = backend + " + OpenCL '" + device + "'";
     return image;
 }

@@ -9,22 +9,31 @@
 
 #include "core/method.h"
 #include "core/scattering_grid.h"
+#include "runtime/ss_method.h"
 
 namespace lucent {
 
 class GridMethod : public Method {
 public:
+    // ss's options and --grid, which every grid method takes.
+    static std::vector<OptionSpec> options();
+
     Image render(const LoadedScene& scene, const MethodSettings& settings) final;
     std::string servedBy() const final { return servedBy_; }
     std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
 
 protected:
+    explicit GridMethod(const MethodOptions& options)
+        : ss_(SsOptions::from(options)), resolution_(options.integer("grid")) {}
+    int resolution() const { return resolution_; }
     // One grid per object of the scene, in order, each reported on one line;
     // device receives the OpenCL device's name.
     virtual std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,
                                                    std::string& device) = 0;
 
 private:
+    SsOptions ss_;
+    int resolution_;
     std::string servedBy_;
 };
 

@@ -31,7 +31,7 @@ std::vector<ScatteringGrid> LblMethod::solveGrids(const LoadedScene& scene, cons
     hybrid::MultipleScattering solver;
     device = solver.deviceName();
     hybrid::HybridSettings hs;
-    hs.resolution = settings.gridResolution;
+    hs.resolution = resolution();
     hs.seed = settings.seed;
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {

@@ -8,6 +8,8 @@ namespace lucent {
 
 class LblMethod final : public GridMethod {
 public:
+    explicit LblMethod(const MethodOptions& options) : GridMethod(options) {}
+    static std::unique_ptr<Method> create(const MethodOptions& options) { return std::make_unique<LblMethod>(options); }
     std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
 
 private:

@@ -8,6 +8,20 @@
 
 namespace lucent {
 
+std::vector<OptionSpec> MdomMethod::options() {
+    std::vector<OptionSpec> out = GridMethod::options();
+    out.push_back(OptionSpec::integerOf("directions", 48, {24, 48, 80, 120, 168},
+                                        "propagation directions (thesis 5.2); more follow forward scattering and "
+                                        "narrow beams better, each costs a sweep"));
+    out.push_back(OptionSpec::integerOf("moments", 16, {4, 9, 16, 25, 36},
+                                        "spherical-harmonic moments of the scattering source stored per voxel; "
+                                        "fewer fit larger grids, more follow larger |g|"));
+    return out;
+}
+
+MdomMethod::MdomMethod(const MethodOptions& options)
+    : GridMethod(options), directions_(options.integer("directions")), moments_(options.integer("moments")) {}
+
 std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
     std::vector<std::string> out = GridMethod::limitations(scene, settings);
     for (const VolumeObject& o : scene.objects) {
@@ -31,9 +45,9 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
     hybrid::MdomScattering solver;
     device = solver.deviceName();
     hybrid::MdomSettings ms;
-    ms.resolution = settings.gridResolution;
-    ms.directions = settings.directions;
-    ms.bands = int(std::lround(std::sqrt(double(settings.moments))));
+    ms.resolution = resolution();
+    ms.directions = directions_;
+    ms.bands = int(std::lround(std::sqrt(double(moments_))));
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {
         hybrid::MdomStats stats;
@@ -42,7 +56,7 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
         std::fprintf(stderr,
                      "lucent: mdom: object '%s': %dx%dx%d voxels, %d directions, %d moments, %d iterations%s: direct "
                      "%.2f s, sweeps %.2f s (voxelised in %.2f s)\n",
-                     object.desc().name.c_str(), d[0], d[1], d[2], ms.directions, settings.moments, stats.iterations,
+                     object.desc().name.c_str(), d[0], d[1], d[2], ms.directions, moments_, stats.iterations,
                      stats.converged ? "" : " (not converged)", stats.directSeconds, stats.sweepSeconds,
                      stats.voxeliseSeconds);
     }

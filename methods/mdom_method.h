@@ -9,11 +9,18 @@ namespace lucent {
 
 class MdomMethod final : public GridMethod {
 public:
+    explicit MdomMethod(const MethodOptions& options);
+    // GridMethod's, --directions and --moments.
+    static std::vector<OptionSpec> options();
+    static std::unique_ptr<Method> create(const MethodOptions& options) {
+        return std::make_unique<MdomMethod>(options);
+    }
     std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
 
 private:
     std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,
                                            std::string& device) override;
+    int directions_, moments_;
 };
 
 }  // namespace lucent

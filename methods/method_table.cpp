@@ -17,24 +17,23 @@
 namespace lucent {
 
 const std::vector<MethodEntry>& methodTable() {
+    const auto always = [] { return std::string(); };
     static const std::vector<MethodEntry> table = {
-        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4)", true, true,
-         [] { return std::string(); }, [] { return std::make_unique<SsMethod>(); }},
-        {"reference", "exact single scattering by quadrature on the CPU (the ground truth of ss)", false, false,
-         [] { return std::string(); }, [] { return std::make_unique<ReferenceMethod>(); }},
+        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4)", true, true, always,
+         SsOptions::specs(), SsMethod::create},
+        {"reference", "exact single scattering by quadrature on the CPU (the ground truth of ss)", false, false, always,
+         ReferenceMethod::options(), ReferenceMethod::create},
         {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",
-         false, false, [] { return std::string(); }, [] { return std::make_unique<PathMethod>(); }},
+         false, false, always, PathMethod::options(), PathMethod::create},
 #ifdef LUCENT_HAVE_OPENCL
         {"lbl",
          "single scattering plus multiple scattering by photon marching and Lattice-Boltzmann lighting on OpenCL "
          "(thesis ch. 4)",
-         true, false, [] { return hybrid::MultipleScattering::unavailableReason(); },
-         [] { return std::make_unique<LblMethod>(); }},
+         true, false, hybrid::MultipleScattering::unavailableReason, GridMethod::options(), LblMethod::create},
         {"mdom",
          "single scattering plus multiple scattering by the modified discrete ordinates method on OpenCL, "
          "anisotropic media included (thesis ch. 5)",
-         true, false, [] { return hybrid::MultipleScattering::unavailableReason(); },
-         [] { return std::make_unique<MdomMethod>(); }},
+         true, false, hybrid::MultipleScattering::unavailableReason, MdomMethod::options(), MdomMethod::create},
 #endif
     };
     return table;
@@ -136,6 +135,43 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
                       "ground truth"};
 }
 
+std::vector<OfferedOption> offeredOptions() {
+    std::vector<OfferedOption> out;
+    for (const MethodEntry& m : methodTable())
+        for (const OptionSpec& spec : m.options) {
+            auto same =
+                std::find_if(out.begin(), out.end(), [&](const OfferedOption& o) { return o.spec.name == spec.name; });
+            if (same == out.end()) {
+                out.push_back({spec, {m.name}});
+            } else if (same->spec == spec) {
+                same->methods.push_back(m.name);
+            } else {
+                throw Error("methods " + same->methods.front() + " and " + m.name + " declare option --" + spec.name +
+                            " differently");
+            }
+        }
+    return out;
+}
+
+MethodOptions methodOptions(const MethodEntry& entry, const std::map<std::string, std::string>& given,
+                            bool chosenByAuto, std::vector<std::string>& warnings) {
+    MethodOptions options(entry.options);
+    for (const auto& [name, value] : given) {
+        if (options.declares(name)) {
+            options.set(name, value);
+            continue;
+        }
+        std::string takers;
+        for (const OfferedOption& o : offeredOptions())
+            if (o.spec.name == name)
+                for (const std::string& m : o.methods) takers += (takers.empty() ? "" : ", ") + m;
+        const std::string problem = "--" + name + " is an option of --method " + takers + ", not of " + entry.name;
+        if (!chosenByAuto) throw Error(problem);
+        warnings.push_back(problem + " (chosen by auto): left out");
+    }
+    return options;
+}
+
 ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {
     if (name != "auto" && std::none_of(methodTable().begin(), methodTable().end(),
                                        [&](const MethodEntry& m) { return m.name == name; })) {
@@ -160,7 +196,7 @@ ResolvedMethod resolveMethod(const std::string& name, const SceneDesc& scene) {
 
 Image renderWith(const MethodEntry& entry, const LoadedScene& scene, const MethodSettings& settings,
                  std::string* servedBy) {
-    return renderWith(entry, *entry.create(), scene, settings, servedBy);
+    return renderWith(entry, *entry.createDefault(), scene, settings, servedBy);
 }
 
 Image renderWith(const MethodEntry& entry, Method& method, const LoadedScene& scene, const MethodSettings& settings,

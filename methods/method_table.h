@@ -2,6 +2,7 @@
 // Every rendering method built into this binary, with its factory: the one list
 // the command line, the viewer and the benchmarks read. A new method is a folder
 // of its own implementing core/method.h plus one row in method_table.cpp.
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +43,22 @@ MethodChoice chooseMethod(const SceneDesc& scene);
 // Whether OpenGL here is a software rasteriser (Mesa's llvmpipe, softpipe,
 // swrast) or missing: then ss has no speed over the CPU reference for small images.
 bool openGlIsSoftware();
+
+// One option as the command line offers it: its declaration, and the methods
+// that declare it (lbl and mdom share ss's --light, say).
+struct OfferedOption {
+    OptionSpec spec;
+    std::vector<std::string> methods;
+};
+// Every option of every method, in table order, each name once. Throws Error
+// when two methods declare one name differently: one flag, one meaning.
+std::vector<OfferedOption> offeredOptions();
+// The entry's options with the given values (name to value, as typed) set.
+// A value for an option the entry does not declare is an Error naming the
+// methods that take it, unless the entry was chosen by auto: then it is left
+// out with a line in warnings, since the user could not know which method runs.
+MethodOptions methodOptions(const MethodEntry& entry, const std::map<std::string, std::string>& given,
+                            bool chosenByAuto, std::vector<std::string>& warnings);
 
 // Resolves "auto" and checks availability: the entry to run and, for auto, why.
 struct ResolvedMethod {

@@ -23,11 +23,28 @@ std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const
     return out;
 }
 
+std::vector<OptionSpec> PathMethod::options() {
+    const PathSettings defaults;
+    return {OptionSpec::integer("samples", defaults.samplesPerPixel, 1, 1 << 24,
+                                "paths per pixel (with --noise: the most a pixel takes); the noise falls as one over "
+                                "their square root"),
+            OptionSpec::real("noise", defaults.noiseTarget, 0.0, 1.0,
+                             "sample each pixel until the standard error of its mean is at most this share of it, "
+                             "up to --samples (0: always --samples)"),
+            OptionSpec::integer("max-scatter", defaults.maxScatter, 1, 1 << 20,
+                                "collisions gathered per path (1: single scattering, the truth of ss)")};
+}
+
+std::unique_ptr<Method> PathMethod::create(const MethodOptions& options) {
+    PathSettings paths;
+    paths.samplesPerPixel = options.integer("samples");
+    paths.noiseTarget = options.real("noise");
+    paths.maxScatter = options.integer("max-scatter");
+    return std::make_unique<PathMethod>(paths);
+}
+
 Image PathMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
-    PathSettings path;
-    path.samplesPerPixel = settings.samplesPerPixel;
-    path.noiseTarget = settings.noiseTarget;
-    path.maxScatter = settings.maxScatter;
+    PathSettings path = paths_;
     path.seed = settings.seed;
     path.threads = settings.threads;
     path.surface = settings.surface;

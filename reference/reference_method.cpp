@@ -4,9 +4,18 @@
 
 namespace lucent {
 
+std::vector<OptionSpec> ReferenceMethod::options() {
+    return {OptionSpec::real("tolerance", ReferenceSettings().tolerance, 1e-8, 0.5,
+                             "relative error target of each pixel's integral; the time grows as it shrinks")};
+}
+
+std::unique_ptr<Method> ReferenceMethod::create(const MethodOptions& options) {
+    return std::make_unique<ReferenceMethod>(options.real("tolerance"));
+}
+
 Image ReferenceMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
     ReferenceSettings reference;
-    reference.tolerance = settings.tolerance;
+    reference.tolerance = tolerance_;
     reference.surface = settings.surface;
     reference.threads = settings.threads;
     return ReferenceRenderer(scene.desc, scene.objects).render(reference);

@@ -6,10 +6,17 @@ namespace lucent {
 
 class ReferenceMethod final : public Method {
 public:
+    explicit ReferenceMethod(double tolerance = 1e-3) : tolerance_(tolerance) {}
+    // --tolerance.
+    static std::vector<OptionSpec> options();
+    static std::unique_ptr<Method> create(const MethodOptions& options);
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings&) const override {
         return indexMatchedWarnings(scene, "reference");
     }
+
+private:
+    double tolerance_;
 };
 
 }  // namespace lucent

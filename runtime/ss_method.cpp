@@ -41,8 +41,8 @@ struct SessionKey {
     bool operator==(const SessionKey&) const = default;
 };
 
-SessionKey sessionKey(const SceneDesc& desc, const MethodSettings& settings) {
-    return {settings.backend, settings.cutoff, desc.camera.width, desc.camera.height};
+SessionKey sessionKey(const SceneDesc& desc, const MethodSettings& settings, const SsOptions& options) {
+    return {options.backend, settings.cutoff, desc.camera.width, desc.camera.height};
 }
 
 std::unique_ptr<GlSession> openSession(const SessionKey& key) {
@@ -54,7 +54,7 @@ std::unique_ptr<GlSession> openSession(const SessionKey& key) {
 }
 
 // session: the prepared one or null (one is opened); holds the session drawn with on return.
-Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings, const SsOptions& options,
                              const std::vector<ScatteringGrid>& grids, std::string& backend,
                              std::unique_ptr<GlSession>& session);
 
@@ -69,11 +69,28 @@ struct SsMethod::Retiring {
     std::future<void> done;
 };
 
-SsMethod::SsMethod() = default;
+std::vector<OptionSpec> SsOptions::specs() {
+    return {OptionSpec::choice("light", "traced", {"traced", "sh"},
+                               "the light reaching each sample traced through the objects, or read from its SH "
+                               "attenuation (sh: the thesis; blurs narrow shadows, no shadows between objects)"),
+            OptionSpec::choice("backend", "auto", {"auto", "egl", "osmesa"},
+                               "the OpenGL backend (auto: EGL, then OSMesa)")};
+}
+
+SsOptions SsOptions::from(const MethodOptions& options) {
+    const std::string& backend = options.choice("backend");
+    return {options.choice("light") == "traced", backend == "auto" ? std::string() : backend};
+}
+
+SsMethod::SsMethod(SsOptions options) : options_(std::move(options)) {}
 SsMethod::~SsMethod() = default;  // waits for retiring_
 
+std::unique_ptr<Method> SsMethod::create(const MethodOptions& options) {
+    return std::make_unique<SsMethod>(SsOptions::from(options));
+}
+
 void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
-    const SessionKey key = sessionKey(desc, settings);
+    const SessionKey key = sessionKey(desc, settings, options_);
     prepared_ = std::make_unique<Prepared>(Prepared{key, std::async(std::launch::async, [key] {
                                                         std::unique_ptr<GlSession> session = openSession(key);
                                                         session->context->release();
@@ -83,11 +100,11 @@ void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
 
 std::vector<std::string> SsMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
     std::vector<std::string> out = indexMatchedWarnings(scene, "ss");
-    for (std::string& line : sampleLimitations(scene, settings)) out.push_back(std::move(line));
+    for (std::string& line : sampleLimitations(scene, options_)) out.push_back(std::move(line));
     return out;
 }
 
-std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, const MethodSettings& settings) {
+std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, const SsOptions& options) {
     std::vector<std::string> out;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const VolumeObject& o = scene.objects[i];
@@ -114,7 +131,7 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
         // one in the other's light: 24% relative RMSE against 5% without). Traced
         // light crosses every object.
         const Bounds3 mine = o.mesh().bounds();
-        for (size_t k = 0; k < scene.objects.size() && !settings.tracedLight; ++k) {
+        for (size_t k = 0; k < scene.objects.size() && !options.tracedLight; ++k) {
             if (k == i) continue;
             const Bounds3 other = scene.objects[k].mesh().bounds();
             const double reach = 0.5 * other.diagonal();  // the other's bounding sphere
@@ -148,9 +165,9 @@ Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings)
     std::unique_ptr<GlSession> session;
     if (prepared_) {
         const std::unique_ptr<Prepared> prepared = std::move(prepared_);
-        if (prepared->key == sessionKey(scene.desc, settings)) session = prepared->session.get();
+        if (prepared->key == sessionKey(scene.desc, settings, options_)) session = prepared->session.get();
     }
-    Image image = renderSingleScattering(scene, settings, {}, backend_, session);
+    Image image = renderSingleScattering(scene, settings, options_, {}, backend_, session);
     // Torn down in a thread of its own while the caller writes the image; the
     // destructor waits for it.
     session->context->release();
@@ -159,15 +176,15 @@ Image SsMethod::render(const LoadedScene& scene, const MethodSettings& settings)
     return image;
 }
 
-Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings, const SsOptions& options,
                              const std::vector<ScatteringGrid>& grids, std::string& backend) {
     std::unique_ptr<GlSession> session;
-    return renderSingleScattering(scene, settings, grids, backend, session);
+    return renderSingleScattering(scene, settings, options, grids, backend, session);
 }
 
 namespace {
 
-Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings, const SsOptions& ssOptions,
                              const std::vector<ScatteringGrid>& grids, std::string& backend,
                              std::unique_ptr<GlSession>& session) {
     if (!scene.hasSamples()) throw Error(scene.desc.file.string(), "single scattering needs the objects' sample sets");
@@ -175,7 +192,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     // over every face) are built while the OpenGL context comes up and the
     // samples are uploaded. The future's destructor waits for it on every path.
     std::future<void> casters;
-    if (settings.tracedLight)
+    if (ssOptions.tracedLight)
         casters = std::async(std::launch::async, [&scene] {
             for (const VolumeObject& o : scene.objects) o.boundary();
         });
@@ -185,7 +202,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     // for them and the frame would wait. An error is
     // met again there, and thrown.
     std::future<void> coefficients;
-    if (!settings.tracedLight)
+    if (!ssOptions.tracedLight)
         coefficients = std::async(std::launch::async, [&scene] {
             try {
                 for (const SampleSet& s : scene.samples) (void)s.coefficients();
@@ -195,7 +212,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     if (session)
         session->context->makeCurrent();
     else
-        session = openSession(sessionKey(scene.desc, settings));
+        session = openSession(sessionKey(scene.desc, settings, ssOptions));
     backend = session->context->backendName();
     const ViewSetup view = viewSetupFor(scene.desc.camera, scene.bounds());
     const OffscreenFrame& frame = *session->frame;
@@ -207,7 +224,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     frame.bindAndClear();
     DrawOptions options;
     options.surface = settings.surface;
-    options.tracedLight = settings.tracedLight;
+    options.tracedLight = ssOptions.tracedLight;
     renderer.draw(view, options);
     return frame.read();
 }

@@ -6,9 +6,19 @@
 
 namespace lucent {
 
+// The options of ss, which lbl and mdom take too since they draw its frame.
+struct SsOptions {
+    bool tracedLight = true;  // each sample's light traced, not read from its SH (DrawOptions::tracedLight)
+    std::string backend;      // "egl", "osmesa" or "" (EGL, then OSMesa)
+    // --light and --backend.
+    static std::vector<OptionSpec> specs();
+    static SsOptions from(const MethodOptions& options);
+};
+
 class SsMethod final : public Method {
 public:
-    SsMethod();
+    explicit SsMethod(SsOptions options = {});
+    static std::unique_ptr<Method> create(const MethodOptions& options);
     ~SsMethod() override;
     // The OpenGL context, the frame and the renderer with its programs, made in
     // a thread of their own while the scene loads; render() makes the context
@@ -21,9 +31,10 @@ public:
     // Lights inside an object or within a sample spacing of its boundary, other
     // objects in a light's way, and Gaussians far wider or narrower than their
     // spacing (docs/accuracy.md, Extremes): what every method drawing the samples shares.
-    static std::vector<std::string> sampleLimitations(const LoadedScene& scene, const MethodSettings& settings);
+    static std::vector<std::string> sampleLimitations(const LoadedScene& scene, const SsOptions& options);
 
 private:
+    SsOptions options_;
     std::string backend_;
     struct Prepared;
     std::unique_ptr<Prepared> prepared_;
@@ -33,7 +44,7 @@ private:
 
 // The frame --method ss draws, plus grids of multiple scattering (--method lbl
 // adds its own); backend receives "egl" or "osmesa".
-Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings,
+Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings, const SsOptions& options,
                              const std::vector<ScatteringGrid>& grids, std::string& backend);
 
 }  // namespace lucent

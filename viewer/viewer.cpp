@@ -21,6 +21,7 @@
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
+#include "runtime/ss_method.h"
 #include "viewer/scattering_grids.h"
 #include "viewer/viewer_state.h"
 
@@ -208,6 +209,8 @@ public:
           grids_(loaded) {
         state_.camera.resize(options.width ? options.width : scene.camera.width,
                              options.height ? options.height : scene.camera.height);
+        // Starts as `lucent render --method ss` draws by default.
+        state_.tracedLight = SsOptions::from(MethodOptions(findMethod(methodName_).options)).tracedLight;
         for (size_t i = 0; i < loaded.objects.size(); ++i)
             renderer_.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
     }
@@ -364,6 +367,7 @@ private:
         ImGui::Checkbox("scattering", &state_.scattering);
         ImGui::SameLine();
         ImGui::Checkbox("traced light", &state_.tracedLight);
+        tooltip("ss", "light");
 #ifdef LUCENT_HAVE_OPENCL
         int multiple = int(state_.multiple);
         ImGui::Combo("multiple", &multiple, "off\0lbl\0mdom\0");
@@ -375,6 +379,14 @@ private:
         if (ImGui::Button("save screenshot")) state_.screenshots.push_back({"lucent-screenshot.png", screenshotPanel_});
         ImGui::SameLine();
         ImGui::Checkbox("with the panel", &screenshotPanel_);
+    }
+
+    // The help of a method's option, from its declaration (docs/methods.md), on the last item.
+    static void tooltip(const std::string& method, const std::string& option) {
+        if (!ImGui::IsItemHovered()) return;
+        for (const OptionSpec& spec : findMethod(method).options)
+            if (spec.name == option)
+                ImGui::SetTooltip("--method %s --%s: %s", method.c_str(), option.c_str(), spec.help.c_str());
     }
 
     void printSummary() const {

@@ -379,12 +379,40 @@ TEST_F(BadInput, FifosAndDevicesAreRefusedNotWaitedOn) {
 // Class 4 and 8: every number on the command line is finite and in range.
 TEST_F(BadInput, NumbersOnTheCommandLineAreFiniteAndInRange) {
     const std::string s = dir.write("scene.json", scene("m.obj")).string();
-    expectFailure("render " + s + " -o x.png --tolerance nan", "--tolerance: 'nan' is not a finite number", "x.png");
+    expectFailure("render " + s + " -o x.png --tolerance nan", "--tolerance: 'nan' is not a number in [1e-08, 0.5]",
+                  "x.png");
+    expectFailure("render " + s + " -o x.png --noise inf", "--noise: 'inf' is not a number in [0, 1]", "x.png");
+    expectFailure("render " + s + " -o x.png --directions 50", "--directions: '50' is not one of 24, 48, 80, 120, 168",
+                  "x.png");
     expectFailure("render " + s + " -o x.png --exposure inf", "--exposure: 'inf' is not a finite number", "x.png");
     expectFailure("preprocess " + s + " --width-factor nan", "--width-factor: 'nan' is not a finite number");
     expectFailure("preprocess " + s + " --seed 18446744073709551616",
                   "--seed: '18446744073709551616' is not a whole number");
     expectFailure("bench accuracy " + s + " --tolerance -inf", "--tolerance: '-inf' is not a finite number");
+}
+
+// A method's options belong to it: given to another method they are an error
+// naming the methods that take them, not silently ignored.
+TEST_F(BadInput, AnOptionOfAnotherMethodIsAnError) {
+    const std::string s = dir.write("scene.json", scene("m.obj")).string();
+    expectFailure("render " + s + " -o x.png --method reference --samples 8",
+                  "--samples is an option of --method path, not of reference", "x.png");
+    expectFailure("render " + s + " -o x.png --method path --light sh",
+                  "--light is an option of --method ss, lbl, mdom, not of path", "x.png");
+}
+
+// docs/methods.md is the reference of the methods' options: the output of
+// `lucent methods`, built from their declarations, word for word.
+TEST(Cli, MethodsPageIsWhatTheDeclarationsSay) {
+    const auto run = test::runLucent("methods");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    std::ifstream in(test::sourceDir() / "docs" / "methods.md");
+    const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+#ifdef LUCENT_HAVE_OPENCL
+    EXPECT_EQ(run.stdoutText, page) << "regenerate it: build/bin/lucent methods > docs/methods.md";
+#else
+    EXPECT_EQ(run.stdoutText, page.substr(0, page.find("\n## lbl") + 1));  // the page less the OpenCL methods
+#endif
 }
 
 // Class 2: the plot script gets the output directory as one argument; no shell

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "core/image_compare.h"
 #include "core/loaded_scene.h"
@@ -34,13 +35,17 @@ Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::s
     attachSamples(loaded, {preprocessObject(loaded.objects[0], pre)});
     MethodSettings settings;
     settings.surface = false;
-    settings.gridResolution = 40;
-    settings.samplesPerPixel = pathSamples;
-    settings.directions = 24;
+    const auto run = [&](const std::string& name, const std::map<std::string, double>& values) {
+        const MethodEntry& entry = findMethod(name);
+        MethodOptions options(entry.options);
+        for (const auto& [option, value] : values) options.set(option, value);
+        return renderWith(entry, *entry.create(options), loaded, settings);
+    };
     Renders r;
-    r.ss = renderWith(findMethod("ss"), loaded, settings);
-    r.lbl = renderWith(findMethod(method), loaded, settings);
-    if (pathSamples > 0) r.path = renderWith(findMethod("path"), loaded, settings);
+    r.ss = run("ss", {});
+    r.lbl = run(method, method == "mdom" ? std::map<std::string, double>{{"grid", 40}, {"directions", 24}}
+                                         : std::map<std::string, double>{{"grid", 40}});
+    if (pathSamples > 0) r.path = run("path", {{"samples", pathSamples}});
     return r;
 }
 
@@ -66,12 +71,12 @@ TEST(MdomMethod, WarnsWhereItMissesTheGoal) {
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.8)};
     scene.objects[0].medium.g = 0.9;
     const LoadedScene loaded = loadScene(scene, false);
-    const auto warnings = findMethod("mdom").create()->limitations(loaded, MethodSettings{});
+    const auto warnings = findMethod("mdom").createDefault()->limitations(loaded, MethodSettings{});
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("|g| > 0.8"), std::string::npos) << warnings[0];
     EXPECT_EQ(warnings[0].find('\n'), std::string::npos);
     scene.objects[0].medium.g = 0.8;
-    EXPECT_TRUE(findMethod("mdom").create()->limitations(loadScene(scene, false), MethodSettings{}).empty());
+    EXPECT_TRUE(findMethod("mdom").createDefault()->limitations(loadScene(scene, false), MethodSettings{}).empty());
 }
 
 TEST(LblMethod, AddsNothingWhereNothingScattersTwice) {

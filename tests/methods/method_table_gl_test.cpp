@@ -19,7 +19,7 @@ TEST(MethodTable, NamesAreUniqueWithFactoriesAndAutoLast) {
     for (const MethodEntry& m : methodTable()) {
         EXPECT_TRUE(names.insert(m.name).second) << m.name;
         EXPECT_FALSE(m.summary.empty()) << m.name;
-        EXPECT_TRUE(m.create && m.create()) << m.name;
+        EXPECT_TRUE(m.create && m.createDefault()) << m.name;
         EXPECT_EQ(m.unavailableReason(), "") << m.name;  // ss and reference run on any machine Lucent builds on
     }
     EXPECT_TRUE(names.count("ss") && names.count("reference"));
@@ -49,6 +49,43 @@ TEST(MethodTable, UnknownMethodsAreOneErrorListingTheBuiltOnes) {
         EXPECT_EQ(std::string(e.what()).rfind("scene.json: /render/method: method 'magic' is not built", 0), 0u)
             << e.what();
     }
+}
+
+// Every option is declared once per name across the methods, with a default in
+// its own domain and a line of help, so one flag means one thing.
+TEST(MethodTable, OptionsAreDeclaredConsistentlyWithDefaultsInTheirDomain) {
+    const std::vector<OfferedOption> offered = offeredOptions();  // throws on a conflict
+    EXPECT_FALSE(offered.empty());
+    for (const MethodEntry& m : methodTable()) {
+        std::set<std::string> names;
+        for (const OptionSpec& o : m.options) {
+            EXPECT_TRUE(names.insert(o.name).second) << m.name << " --" << o.name;
+            EXPECT_EQ(o.problem(o.defaultValue), "") << m.name;
+            EXPECT_FALSE(o.help.empty()) << m.name << " --" << o.name;
+            for (const char* shared : {"threads", "seed", "width", "height", "exposure", "method"})
+                EXPECT_NE(o.name, shared) << m.name << " declares a shared option";
+        }
+    }
+}
+
+// A value for another method's option: an error when the user chose the method,
+// a warning (and left out) when auto did.
+TEST(MethodTable, ForeignOptionsAreAnErrorUnlessAutoChose) {
+    std::vector<std::string> warnings;
+    const MethodOptions path = methodOptions(findMethod("path"), {{"samples", "8"}}, false, warnings);
+    EXPECT_EQ(path.integer("samples"), 8);
+    EXPECT_TRUE(warnings.empty());
+    try {
+        methodOptions(findMethod("ss"), {{"samples", "8"}}, false, warnings);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "--samples is an option of --method path, not of ss");
+    }
+    const MethodOptions ss = methodOptions(findMethod("ss"), {{"samples", "8"}, {"light", "sh"}}, true, warnings);
+    EXPECT_EQ(ss.choice("light"), "sh");
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], "--samples is an option of --method path, not of ss (chosen by auto): left out");
+    EXPECT_THROW(methodOptions(findMethod("path"), {{"samples", "0"}}, false, warnings), Error);
 }
 
 // auto on scenes where each method is the right answer (the goal and the

@@ -188,8 +188,7 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
     ReferenceSettings reference;
     reference.surface = false;
     const double goal = test::ssGoalRelativeRmse(objects);
-    MethodSettings sh;
-    sh.tracedLight = false;
+    const SsOptions sh{false, ""};
     for (const Vec3& at : {Vec3(1.25, 4.0, 3.0), Vec3(5.0, 0.3, 0.2)}) {
         scene.lights[0].position = at;
         const bool between = at.x > 2.5;
@@ -201,7 +200,7 @@ TEST(SingleScattering, TwoObjectsInOneSceneMeetTheSpheresGoal) {
         EXPECT_GT(traced.pixels, 800u);
         EXPECT_LT(traced.relativeRmse, goal) << "light at x " << at.x;
         EXPECT_TRUE(SsMethod().limitations(loadScene(scene, false), MethodSettings{}).empty());
-        const std::vector<std::string> said = SsMethod().limitations(loadScene(scene, false), sh);
+        const std::vector<std::string> said = SsMethod(sh).limitations(loadScene(scene, false), MethodSettings{});
         if (!between) {
             EXPECT_LT(fromSh.relativeRmse, goal) << "neither shadows the other";
             EXPECT_TRUE(said.empty());
@@ -241,15 +240,15 @@ TEST(SingleScattering, APreparedContextDrawsTheSameImage) {
     const LoadedScene loaded = loadScene(sphere.scene, true);
     for (const std::string backend : {"egl", "osmesa"}) {
         SCOPED_TRACE(backend);
-        MethodSettings settings;
-        settings.backend = backend;
-        const Image plain = SsMethod().render(loaded, settings);
-        SsMethod prepared;
+        const MethodSettings settings;
+        const SsOptions options{true, backend};
+        const Image plain = SsMethod(options).render(loaded, settings);
+        SsMethod prepared(options);
         prepared.prepare(sphere.scene, settings);
         const Image fromPrepared = prepared.render(loaded, settings);
         SceneDesc otherSize = sphere.scene;
         otherSize.camera.width = 32;
-        SsMethod dropped;
+        SsMethod dropped(options);
         dropped.prepare(otherSize, settings);
         const Image fromDropped = dropped.render(loaded, settings);
         double peak = 0.0;

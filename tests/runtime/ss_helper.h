@@ -17,9 +17,7 @@ inline Image renderSs(const SceneDesc& scene, bool surface = true, const std::st
     const LoadedScene loaded = loadScene(scene, true);
     MethodSettings settings;
     settings.surface = surface;
-    settings.backend = backend;
-    settings.tracedLight = tracedLight;
-    return SsMethod().render(loaded, settings);
+    return SsMethod({tracedLight, backend}).render(loaded, settings);
 }
 
 // Every object of scene preprocessed at default quality into its sample file,
