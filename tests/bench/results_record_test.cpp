@@ -30,7 +30,8 @@ std::string readAll(const fs::path& file) {
 // The programs that write records, by the title they give them.
 bool isBenchmark(const std::string& title) {
     for (const char* name : {"lucent-bench-render", "lucent-bench-preprocess", "lucent-bench-command",
-                             "lucent-bench-hybrid", "lucent-bench-peer", "lucent bench accuracy", "time-ci.sh"})
+                             "lucent-bench-hybrid", "lucent-bench-peer", "lucent-bench-gallery", "lucent bench accuracy",
+                             "time-ci.sh"})
         if (title == name) return true;
     return false;
 }
@@ -106,15 +107,23 @@ TEST(ResultsRecord, EveryRecordInDocsResultsParsesAndNamesItsCommand) {
     const fs::path dir = fs::path(LUCENT_SOURCE_DIR) / "docs/results";
     ASSERT_TRUE(fs::is_directory(dir)) << dir;
     int records = 0;
-    for (const auto& entry : fs::directory_iterator(dir)) {
-        if (entry.path().extension() != ".md" || entry.path().filename() == "README.md") continue;
+    std::vector<fs::path> files = {fs::path(LUCENT_SOURCE_DIR) / "docs/gallery.md"};  // a record with pictures
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".md" && entry.path().filename() != "README.md") files.push_back(entry.path());
+    for (const fs::path& file : files) {
         ++records;
-        SCOPED_TRACE(entry.path().filename().string());
+        SCOPED_TRACE(file.filename().string());
         ParsedRecord r;
-        ASSERT_NO_THROW(r = parseRecord(readAll(entry.path()), entry.path().string()));
+        ASSERT_NO_THROW(r = parseRecord(readAll(file), file.string()));
         EXPECT_TRUE(isBenchmark(r.title)) << "written by " << r.title << ", which is no benchmark of Lucent";
         EXPECT_EQ(r.command.rfind(r.title, 0), 0u) << r.command;
         EXPECT_GT(r.tables.front().rows.size(), 0u);
+        for (const ParsedRecord::Table& t : r.tables)
+            for (const auto& row : t.rows)
+                for (const std::string& cell : row)
+                    if (const size_t at = cell.find("]("); cell.rfind("![", 0) == 0 && at != std::string::npos)
+                        EXPECT_TRUE(fs::is_regular_file(file.parent_path() / cell.substr(at + 2, cell.size() - at - 3)))
+                            << "the picture of " << cell;
     }
     EXPECT_GE(records, 1) << "docs/results/ holds no record";
 }
