@@ -60,7 +60,7 @@ inline std::vector<std::string> indexMatchedWarnings(const LoadedScene& scene, c
         if (o.desc().medium.ior != 1.0)
             out.push_back("object '" + o.desc().name + "': ior " + std::to_string(o.desc().medium.ior) +
                           " is treated as index-matched by --method " + method +
-                          ": no refraction, no reflection at the boundary (--method path refracts)");
+                          ": no refraction, no reflection at the boundary (--method path and reference refract)");
     return out;
 }
 

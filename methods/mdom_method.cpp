@@ -30,7 +30,7 @@ std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const
             out.push_back(
                 "object '" + o.desc().name +
                 "': ior differs from 1: mdom marches light in straight lines (thesis 5.2) and takes the boundary as "
-                "index-matched: no refraction, no reflection (--method path refracts)");
+                "index-matched: no refraction, no reflection (--method path and reference refract)");
         if (std::abs(m.g) > kMdomMaxG)
             out.push_back(
                 "object '" + o.desc().name + "': |g| > " + std::to_string(kMdomMaxG).substr(0, 3) +

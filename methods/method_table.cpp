@@ -21,7 +21,7 @@ const std::vector<MethodEntry>& methodTable() {
     static const std::vector<MethodEntry> table = {
         {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4)", true, true, always,
          SsOptions::specs(), SsMethod::create},
-        {"reference", "exact single scattering by quadrature on the CPU (the ground truth of ss)", false, false, always,
+        {"reference", "exact single scattering by quadrature on the CPU, refraction included (the ground truth of ss)", false, false, always,
          ReferenceMethod::options(), ReferenceMethod::create},
         {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",
          false, false, always, PathMethod::options(), PathMethod::create},
@@ -84,12 +84,13 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // tracer) at the least time, from the measurements of docs/accuracy.md
     // ("What auto picks"). Single scattering alone misses light that grows with
     // the albedo; below kSingleScatteringAlbedo it stays within the goal.
-    // Only the path tracer refracts and reflects at a boundary whose ior is not
-    // 1: the others are far from it there whatever the albedo.
+    // Only the path tracer gives full transport through a boundary whose ior is
+    // not 1 (the reference refracts, but single scattering only): the fast
+    // methods are far from it there whatever the albedo.
     for (const ObjectDesc& o : scene.objects)
         if (o.medium.ior != 1.0)
             return {"path", "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
-                                ": only the path tracer refracts and reflects light at its boundary (on the sphere "
+                                ": only the path tracer gives full transport through a refracting boundary (on the sphere "
                                 "at ior 1.33, ss is 88% from it at albedo 0.1 and 19% at 0.75, lbl 38% at 0.75); "
                                 "it is slow: lower --samples or set --noise for a draft"};
     double albedo = 0.0;

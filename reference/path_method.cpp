@@ -7,6 +7,10 @@
 namespace lucent {
 
 std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
+    return overlappingRefractors(scene, "the path tracer");
+}
+
+std::vector<std::string> overlappingRefractors(const LoadedScene& scene, const std::string& method) {
     std::vector<std::string> out;
     const auto& objects = scene.objects;
     const bool refracting =
@@ -17,7 +21,7 @@ std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const
             const Bounds3 a = objects[i].mesh().bounds(), b = objects[j].mesh().bounds();
             if (glm::all(glm::lessThan(a.min, b.max)) && glm::all(glm::lessThan(b.min, a.max)))
                 out.push_back("objects '" + objects[i].desc().name + "' and '" + objects[j].desc().name +
-                              "' may overlap: with a refracting boundary in the scene the path tracer takes each "
+                              "' may overlap: with a refracting boundary in the scene " + method + " takes each "
                               "boundary to separate one medium from the air, and is wrong where objects overlap");
         }
     return out;

@@ -5,6 +5,11 @@
 
 namespace lucent {
 
+// Objects whose boxes overlap in a scene with a refracting boundary: method
+// (the path tracer, the reference) takes each boundary to separate one medium
+// from the air there, and is wrong where objects overlap.
+std::vector<std::string> overlappingRefractors(const LoadedScene& scene, const std::string& method);
+
 class PathMethod final : public Method {
 public:
     // paths: samples, noise and max-scatter are read; the rest comes from MethodSettings.

@@ -1,5 +1,6 @@
 #include "reference/reference_method.h"
 
+#include "reference/path_method.h"
 #include "reference/reference_renderer.h"
 
 namespace lucent {
@@ -11,6 +12,10 @@ std::vector<OptionSpec> ReferenceMethod::options() {
 
 std::unique_ptr<Method> ReferenceMethod::create(const MethodOptions& options) {
     return std::make_unique<ReferenceMethod>(options.real("tolerance"));
+}
+
+std::vector<std::string> ReferenceMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
+    return overlappingRefractors(scene, "the reference");
 }
 
 Image ReferenceMethod::render(const LoadedScene& scene, const MethodSettings& settings) {

@@ -11,9 +11,8 @@ public:
     static std::vector<OptionSpec> options();
     static std::unique_ptr<Method> create(const MethodOptions& options);
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
-    std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings&) const override {
-        return indexMatchedWarnings(scene, "reference");
-    }
+    // Overlapping objects in a scene with a refracting boundary (as the path tracer).
+    std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings&) const override;
 
 private:
     double tolerance_;

@@ -4,6 +4,14 @@
 //   T(cam, x) sigma_s(x) p(w_view, w_light) sum_j E_j(x) T(x, l_j)
 // computed on the exact mesh and density, with no samples and no spherical
 // harmonics, by adaptive Simpson quadrature to a relative tolerance.
+//
+// At a refracting boundary (an object whose ior is not 1) the camera ray
+// splits into its Fresnel-reflected and refracted parts, each weighted by its
+// share and followed in turn (total internal reflection included), with the
+// 1/n^2 of radiance crossing in and n^2 crossing out; the light reaches each
+// point through the boundary as the path tracer's next-event estimation finds
+// it (reference/refraction.h). It is then what `--method path --max-scatter 1`
+// converges to, without its noise.
 #include <vector>
 
 #include "core/image.h"
@@ -33,11 +41,23 @@ public:
     Rgb radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
 
 private:
+    // The Phong reflection at the first front face before tStop (objects with a surface).
+    Rgb surfaceReflection(const Vec3& origin, const Vec3& dir, double tStop, const ReferenceSettings& settings) const;
+    // radiance() less the surface term in a scene with a refracting boundary
+    // (reference_refracted.cpp): the ray followed from boundary to boundary.
+    Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
+    // One branch of it: the ray at x along w, inside the object inside (or
+    // nullptr), carrying weight after events boundary crossings.
+    Rgb followRefracted(const Vec3& x, const Vec3& w, const VolumeObject* inside, const Rgb& weight, int events,
+                        const ReferenceSettings& settings) const;
+    // sum_j p E_j(x) T(x, l_j), the lights reaching x along straight lines.
+    Rgb straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
     Rgb inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
     double densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const;
 
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;
+    bool refracting_ = false;  // some object's ior differs from 1
 };
 
 }  // namespace lucent

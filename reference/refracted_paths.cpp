@@ -47,14 +47,7 @@ double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const 
 
 Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
     if (object.desc().medium.ior == 1.0) return gatherLights(object, x, dir);
-    Rgb sum(0.0);
-    for (const Light& light : scene_.lights) {
-        const std::optional<RefractedArrival> a = lightThroughBoundary(object, objects_, light, x);
-        if (!a) continue;
-        sum += henyeyGreenstein(glm::dot(a->toLight, dir), object.desc().medium.g) * a->irradiance *
-               transmittance(object.desc().medium.sigmaT, object.densityPath(x, a->toLight, a->inside));
-    }
-    return sum;
+    return lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
 }
 
 PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, Rng& rng,

@@ -179,4 +179,16 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     return RefractedArrival{glm::normalize(y - x), solved->inside, irradiance};
 }
 
+Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
+                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir) {
+    Rgb sum(0.0);
+    for (const Light& light : lights) {
+        const std::optional<RefractedArrival> a = lightThroughBoundary(o, objects, light, x);
+        if (!a) continue;
+        sum += henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance *
+               transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
+    }
+    return sum;
+}
+
 }  // namespace lucent

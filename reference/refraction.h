@@ -58,4 +58,10 @@ struct RefractedArrival {
 std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
                                                      const Light& light, const Vec3& x);
 
+// sum over the lights of p(w_light, dir) E T at x inside o, each light arriving
+// through o's boundary (lightThroughBoundary) and dimmed inside o on its way to
+// x: the light a collision at x scatters along dir, as both ground truths gather it.
+Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
+                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir);
+
 }  // namespace lucent

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The pictures of the docs, made from a build: the README's image of the bundled
 # scene (the Stanford bunny, the main job's scene) as `lucent render` draws it
-# with --method auto. The sample file goes to a temporary folder; the image to
-# docs/images/.
+# with --method auto, then docs/gallery.md, every method on the bundled scenes
+# beside the path tracer with its error and time (lucent-bench-gallery, through
+# --record). Sample files go to a temporary folder; the images to docs/images/.
 #   scripts/gallery.sh [--build DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,3 +23,5 @@ mkdir -p docs/images
 "$lucent" preprocess "$work/bunny.json"
 "$lucent" render "$work/bunny.json" -o docs/images/bunny.png
 echo "gallery.sh: wrote docs/images/bunny.png ($(stat -c %s docs/images/bunny.png) bytes)"
+"$build/bin/lucent-bench-gallery" --images docs/images/gallery --record docs/gallery.md
+echo "gallery.sh: wrote docs/gallery.md ($(du -cb docs/images/gallery/*.png | tail -1 | cut -f1) bytes of images)"

@@ -19,7 +19,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/loaded_scene.h"
 #include "reference/path_tracer.h"
+#include "reference/reference_renderer.h"
 #include "tests/reference/spot_radiance.h"
 #include "tests/support/test_support.h"
 
@@ -210,6 +212,87 @@ TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
     std::printf("radiance %.6g +- %.2g (expected %.6g, %+.2f%%)\n", mean, standardError, expected,
                 100.0 * (mean / expected - 1.0));
     EXPECT_NEAR(mean, expected, std::max(3.0 * standardError, 0.005 * expected));
+}
+
+// The single-scattering reference refracts too: on the half-space of the test
+// above, its radiance for the central pixel is the same closed form, without
+// the path tracer's noise (tolerance: the quadrature's 1e-4 and the box's
+// far faces, 40 optical depths away).
+TEST(Refraction, ReferenceOnTheHalfSpaceIsTheClosedForm) {
+    const double n = 1.5, sigmaT = 2.0, albedo = 0.8, g = 0.3;
+    const double lightAngle = radians(30.0), viewAngle = radians(45.0);
+    test::ScratchDir dir;
+    SceneDesc scene;
+    ObjectDesc o =
+        test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
+    o.medium.ior = n;
+    o.medium.g = g;
+    scene.objects = {o};
+    Light beam;
+    beam.type = Light::Type::Directional;
+    beam.direction = Vec3(std::sin(lightAngle), 0.0, -std::cos(lightAngle));
+    beam.power = Rgb(kPi);
+    scene.lights = {beam};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    ReferenceSettings settings;
+    settings.tolerance = 1e-5;
+    const Vec3 eye = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
+    const double radiance = ReferenceRenderer(scene, objects).radiance(eye, glm::normalize(-eye), settings).r;
+    const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
+    const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
+    const double cosScatter = -cosLight * cosView;
+    const double phase = (1.0 - g * g) / (4.0 * kPi * std::pow(1.0 + g * g - 2.0 * g * cosScatter, 1.5));
+    const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
+    const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * albedo * phase * irradianceInside /
+                            (1.0 + cosView / cosLight);
+    std::printf("reference %.8g, closed form %.8g (%+.4f%%)\n", radiance, expected, 100.0 * (radiance / expected - 1.0));
+    EXPECT_NEAR(radiance, expected, 1e-3 * expected);
+}
+
+// On a refracting sphere (ior 1.33 and 1.5, internal reflections, total
+// internal reflection near the rim, light found through the boundary) the
+// reference is what `--method path --max-scatter 1` converges to: the images'
+// totals agree within 3 standard errors of the path tracer's, and so do the
+// brightest pixels one by one.
+TEST(Refraction, ReferenceIsThePathTracersSingleScatteringOnASphere) {
+    for (const double n : {1.33, 1.5}) {
+        SCOPED_TRACE(n);
+        SceneDesc scene;
+        scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, 10);
+        scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
+        scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75)};
+        scene.objects[0].medium.ior = n;
+        scene.objects[0].medium.g = 0.3;
+        std::vector<std::string> warnings;
+        const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+        ReferenceSettings exact;
+        exact.surface = false;
+        const Image reference = ReferenceRenderer(scene, objects).render(exact);
+        PathSettings paths;
+        paths.samplesPerPixel = 3000;
+        paths.maxScatter = 1;
+        paths.surface = false;
+        const PathTracer::Result path = PathTracer(scene, objects).render(paths);
+        double sumReference = 0.0, sumPath = 0.0, variance = 0.0;
+        int far = 0, bright = 0;
+        double peak = 0.0;
+        for (const glm::vec3& p : reference.pixels) peak = std::max(peak, double(p.g));
+        for (size_t i = 0; i < reference.pixels.size(); ++i) {
+            const double r = reference.pixels[i].g, m = path.mean.pixels[i].g, se = path.standardError.pixels[i].g;
+            sumReference += r, sumPath += m, variance += se * se;
+            if (r < 0.2 * peak) continue;
+            ++bright;
+            far += std::abs(r - m) > 3.5 * se + 1e-3 * r ? 1 : 0;
+        }
+        std::printf("ior %.2f: reference total %.6g, path %.6g +- %.2g (%+.2f%%); %d of %d bright pixels beyond 3.5 "
+                    "standard errors\n",
+                    n, sumReference, sumPath, std::sqrt(variance), 100.0 * (sumReference / sumPath - 1.0), far,
+                    bright);
+        EXPECT_NEAR(sumReference, sumPath, 3.0 * std::sqrt(variance) + 2e-3 * sumPath);
+        EXPECT_GT(bright, 15);
+        EXPECT_LE(far, std::max(1, bright / 50));
+    }
 }
 
 }  // namespace
