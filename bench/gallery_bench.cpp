@@ -74,10 +74,11 @@ void gallery(ResultsRecord& out, const fs::path& sceneFile, int size, int spp, c
         writeImage(file, image, exposure);
         return "![" + name + ", " + method + "](" + (linkBase / file.filename()).generic_string() + ")";
     };
-    out.print("\n## %s\n\n%dx%d; %zu object(s), preprocessed in memory at default quality in %.1f s (what ss, lbl "
-              "and mdom draw from); the truth's own noise is %.1f%%, taken out of the errors\n\n",
-              name.c_str(), size, size, loaded.objects.size(), preprocessSeconds,
-              100.0 * luminanceRelativeRmse(truth.a, truth.a, truth.b).noise);
+    out.print(
+        "\n## %s\n\n%dx%d; %zu object(s), preprocessed in memory at default quality in %.1f s (what ss, lbl "
+        "and mdom draw from); the truth's own noise is %.1f%%, taken out of the errors\n\n",
+        name.c_str(), size, size, loaded.objects.size(), preprocessSeconds,
+        100.0 * luminanceRelativeRmse(truth.a, truth.a, truth.b).noise);
     out.tableHeader({"image", "method", "relative RMSE against path", "mean against path", "time (s)"},
                     {false, false, true, true, true});
     out.tableRow({picture("path", truth.mean), "path (the truth, " + std::to_string(spp) + " paths per pixel)", "-",

@@ -21,7 +21,8 @@ std::vector<std::string> overlappingRefractors(const LoadedScene& scene, const s
             const Bounds3 a = objects[i].mesh().bounds(), b = objects[j].mesh().bounds();
             if (glm::all(glm::lessThan(a.min, b.max)) && glm::all(glm::lessThan(b.min, a.max)))
                 out.push_back("objects '" + objects[i].desc().name + "' and '" + objects[j].desc().name +
-                              "' may overlap: with a refracting boundary in the scene " + method + " takes each "
+                              "' may overlap: with a refracting boundary in the scene " + method +
+                              " takes each "
                               "boundary to separate one medium from the air, and is wrong where objects overlap");
         }
     return out;

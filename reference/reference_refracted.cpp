@@ -28,8 +28,7 @@ double largest(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
 }  // namespace
 
-Rgb ReferenceRenderer::refractedRadiance(const Vec3& origin, const Vec3& dir,
-                                         const ReferenceSettings& settings) const {
+Rgb ReferenceRenderer::refractedRadiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const {
     const VolumeObject* inside = nullptr;
     for (const VolumeObject& o : objects_)
         if (o.contains(origin)) inside = &o;

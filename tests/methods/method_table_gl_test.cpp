@@ -150,7 +150,9 @@ TEST(MethodTable, AutoTakesThePathTracerForARefractingBoundaryAtAnyAlbedo) {
         scene.objects[0].medium.ior = 1.33;
         const MethodChoice c = chooseMethod(scene);
         EXPECT_EQ(c.method, "path") << c.reason;
-        EXPECT_NE(c.reason.find("ior 1.33: only the path tracer gives full transport through a refracting boundary"), std::string::npos) << c.reason;
+        EXPECT_NE(c.reason.find("ior 1.33: only the path tracer gives full transport through a refracting boundary"),
+                  std::string::npos)
+            << c.reason;
     }
 }
 

@@ -246,7 +246,8 @@ TEST(Refraction, ReferenceOnTheHalfSpaceIsTheClosedForm) {
     const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
     const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * albedo * phase * irradianceInside /
                             (1.0 + cosView / cosLight);
-    std::printf("reference %.8g, closed form %.8g (%+.4f%%)\n", radiance, expected, 100.0 * (radiance / expected - 1.0));
+    std::printf("reference %.8g, closed form %.8g (%+.4f%%)\n", radiance, expected,
+                100.0 * (radiance / expected - 1.0));
     EXPECT_NEAR(radiance, expected, 1e-3 * expected);
 }
 
@@ -285,10 +286,10 @@ TEST(Refraction, ReferenceIsThePathTracersSingleScatteringOnASphere) {
             ++bright;
             far += std::abs(r - m) > 3.5 * se + 1e-3 * r ? 1 : 0;
         }
-        std::printf("ior %.2f: reference total %.6g, path %.6g +- %.2g (%+.2f%%); %d of %d bright pixels beyond 3.5 "
-                    "standard errors\n",
-                    n, sumReference, sumPath, std::sqrt(variance), 100.0 * (sumReference / sumPath - 1.0), far,
-                    bright);
+        std::printf(
+            "ior %.2f: reference total %.6g, path %.6g +- %.2g (%+.2f%%); %d of %d bright pixels beyond 3.5 "
+            "standard errors\n",
+            n, sumReference, sumPath, std::sqrt(variance), 100.0 * (sumReference / sumPath - 1.0), far, bright);
         EXPECT_NEAR(sumReference, sumPath, 3.0 * std::sqrt(variance) + 2e-3 * sumPath);
         EXPECT_GT(bright, 15);
         EXPECT_LE(far, std::max(1, bright / 50));
