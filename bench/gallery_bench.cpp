@@ -108,16 +108,17 @@ void gallery(ResultsRecord& out, const fs::path& sceneFile, int size, int spp, c
 int main(int argc, char** argv) {
     CLI::App app{"The gallery: every method on the bundled scenes beside the path tracer, with error and time"};
     std::vector<std::string> scenes;
-    int size = 160, spp = 256;
+    int size = 128, spp = 256;
     std::string imagesDir = "docs/images/gallery", recordFile;
-    app.add_option("scenes", scenes, "Scene files (default: the bundled bunny, sphere and layered cube)");
+    app.add_option("scenes", scenes,
+                   "Scene files (default: the bundled bunny, sphere, cube, torus cube and layered cube)");
     app.add_option("--size", size, "Image width and height")->check(CLI::Range(8, 2048));
     app.add_option("--spp", spp, "Paths per pixel of each of the truth's two renders")->check(CLI::Range(1, 1 << 20));
     app.add_option("--images", imagesDir, "Folder for the PNGs");
     app.add_option("--record", recordFile, "Also write the gallery to this Markdown file (docs/gallery.md)");
     CLI11_PARSE(app, argc, argv);
     if (scenes.empty())
-        for (const char* s : {"bunny", "sphere", "layered-cube"})
+        for (const char* s : {"bunny", "sphere", "cube", "torus-cube", "layered-cube"})
             scenes.push_back(std::string(LUCENT_SOURCE_DIR) + "/models/" + s + ".json");
     try {
         ResultsRecord out(argc, argv);

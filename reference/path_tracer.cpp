@@ -123,20 +123,8 @@ Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Ve
 Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
                             int channel) const {
     // At the first front face before any blocker, as the reference adds it.
-    Rgb total(0.0);
-    if (!settings.surface || !scene_.render.surface) return total;
-    double nearest = kInfinity;
-    std::vector<Crossing> crossings;
-    for (const VolumeObject& o : objects_) {
-        if (!o.desc().surface) continue;
-        o.boundary().crossings(origin, dir, crossings);
-        if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
-            nearest = crossings.front().t;
-            const Vec3 hit = origin + nearest * dir;
-            total = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
-                                           o.shadingNormal(crossings.front().face, hit), dir);
-        }
-    }
+    if (!settings.surface || !scene_.render.surface) return Rgb(0.0);
+    const Rgb total = firstSurfaceReflection(objects_, scene_.lights, origin, dir, tStop);
     return masked(total, channel);
 }
 

@@ -26,8 +26,11 @@ Rgb adaptiveSimpson(const F& f, double a, double b, const Rgb& fa, const Rgb& fm
 
 // Integrates f over [a, b]: a fixed composite pass sizes the answer, then each
 // panel is refined until its share of the tolerance is met.
+// Each of the 8 panels is halved at most maxDepth times: past that a jump in f
+// (a shadow's edge) is left with an error of its height times the panel over 2^maxDepth.
 template <class F>
-Rgb integrate(const F& f, double a, double b, double relativeTolerance, double absoluteFloor = 1e-300) {
+Rgb integrate(const F& f, double a, double b, double relativeTolerance, double absoluteFloor = 1e-300,
+              int maxDepth = 24) {
     constexpr int kPanels = 8;
     const double h = (b - a) / kPanels;
     Rgb values[2 * kPanels + 1];
@@ -39,7 +42,8 @@ Rgb integrate(const F& f, double a, double b, double relativeTolerance, double a
     for (int p = 0; p < kPanels; ++p) {
         const double x0 = a + h * p;
         const Rgb whole = h / 6.0 * (values[2 * p] + 4.0 * values[2 * p + 1] + values[2 * p + 2]);
-        total += adaptiveSimpson(f, x0, x0 + h, values[2 * p], values[2 * p + 1], values[2 * p + 2], whole, tol, 24);
+        total +=
+            adaptiveSimpson(f, x0, x0 + h, values[2 * p], values[2 * p + 1], values[2 * p + 2], whole, tol, maxDepth);
     }
     return total;
 }
@@ -53,13 +57,15 @@ constexpr double kOpticalDepthInOnePiece = 8.0;
 // grow with sigma_t). So pieces from the entry, 1/sigma long and four times longer
 // each, every one to the tolerance of what came before: about log4(sigma L) pieces.
 template <class F>
-Rgb integrateIntoDenseMedium(const F& f, double a, double b, double sigmaMax, double relativeTolerance) {
-    if (!(sigmaMax * (b - a) > kOpticalDepthInOnePiece)) return integrate(f, a, b, relativeTolerance);
+Rgb integrateIntoDenseMedium(const F& f, double a, double b, double sigmaMax, double relativeTolerance,
+                             int maxDepth = 24) {
+    if (!(sigmaMax * (b - a) > kOpticalDepthInOnePiece)) return integrate(f, a, b, relativeTolerance, 1e-300, maxDepth);
     Rgb total(0.0);
     double start = a, length = 1.0 / sigmaMax;
     while (start < b) {
         const double end = std::min(b, start + length);
-        total += integrate(f, start, end, relativeTolerance, relativeTolerance * magnitude(total) / 64.0 + 1e-300);
+        total +=
+            integrate(f, start, end, relativeTolerance, relativeTolerance * magnitude(total) / 64.0 + 1e-300, maxDepth);
         start = end;
         length *= 4.0;
     }

@@ -49,30 +49,13 @@ Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x,
     return sum;
 }
 
-Rgb ReferenceRenderer::surfaceReflection(const Vec3& origin, const Vec3& dir, double tStop,
-                                         const ReferenceSettings& settings) const {
-    if (!settings.surface || !scene_.render.surface) return Rgb(0.0);
-    Rgb surface(0.0);
-    double nearestSurface = kInfinity;
-    std::vector<Crossing> cs;
-    for (const auto& o : objects_) {
-        if (!o.desc().surface) continue;
-        o.boundary().crossings(origin, dir, cs);
-        if (!cs.empty() && !cs.front().exits && cs.front().t < std::min(nearestSurface, tStop)) {
-            nearestSurface = cs.front().t;
-            const Vec3 hit = origin + cs.front().t * dir;
-            surface = phongSurfaceReflection(*o.desc().surface, scene_.lights, hit,
-                                             o.shadingNormal(cs.front().face, hit), dir);
-        }
-    }
-    return surface;
-}
-
 Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const {
     // The camera ray stops at the first opaque blocker.
     double tStop = kInfinity;
     for (const auto& o : objects_) tStop = std::min(tStop, o.firstBlockerHit(origin, dir));
-    const Rgb surface = surfaceReflection(origin, dir, tStop, settings);
+    const Rgb surface = settings.surface && scene_.render.surface
+                            ? firstSurfaceReflection(objects_, scene_.lights, origin, dir, tStop)
+                            : Rgb(0.0);
     if (refracting_) return surface + refractedRadiance(origin, dir, settings);
 
     struct Segment {

@@ -41,8 +41,6 @@ public:
     Rgb radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
 
 private:
-    // The Phong reflection at the first front face before tStop (objects with a surface).
-    Rgb surfaceReflection(const Vec3& origin, const Vec3& dir, double tStop, const ReferenceSettings& settings) const;
     // radiance() less the surface term in a scene with a refracting boundary
     // (reference_refracted.cpp): the ray followed from boundary to boundary.
     Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;

@@ -25,4 +25,22 @@ Rgb phongSurfaceReflection(const SurfaceDesc& s, const std::vector<Light>& light
     return sum;
 }
 
+Rgb firstSurfaceReflection(const std::vector<VolumeObject>& objects, const std::vector<Light>& lights,
+                           const Vec3& origin, const Vec3& dir, double tStop) {
+    Rgb surface(0.0);
+    double nearest = kInfinity;
+    std::vector<Crossing> crossings;
+    for (const VolumeObject& o : objects) {
+        if (!o.desc().surface) continue;
+        o.boundary().crossings(origin, dir, crossings);
+        if (!crossings.empty() && !crossings.front().exits && crossings.front().t < std::min(nearest, tStop)) {
+            nearest = crossings.front().t;
+            const Vec3 hit = origin + nearest * dir;
+            surface = phongSurfaceReflection(*o.desc().surface, lights, hit,
+                                             o.shadingNormal(crossings.front().face, hit), dir);
+        }
+    }
+    return surface;
+}
+
 }  // namespace lucent

@@ -177,75 +177,72 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
     EXPECT_NEAR(removed, takenIn, 0.01 * takenIn);
 }
 
-TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
-    const double n = 1.5, sigmaT = 2.0, albedo = 0.8, g = 0.3;
+// A half-space of index 1.5 (a box 80 wide and 20 deep) lit by a beam at 30
+// degrees and seen at 45 degrees, in perpendicular planes: single scattering
+// there has a closed form with Snell's angles, both Fresnel transmissions and
+// the 1/n^2 of radiance leaving the medium.
+struct HalfSpace {
+    static constexpr double n = 1.5, sigmaT = 2.0, albedo = 0.8, g = 0.3;
     const double lightAngle = radians(30.0), viewAngle = radians(45.0);
-    test::ScratchDir dir;
     SceneDesc scene;
-    ObjectDesc o =
-        test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
-    o.medium.ior = n;
-    o.medium.g = g;
-    scene.objects = {o};
-    Light beam;
-    beam.type = Light::Type::Directional;
-    beam.direction = Vec3(std::sin(lightAngle), 0.0, -std::cos(lightAngle));
-    beam.power = Rgb(kPi);
-    scene.lights = {beam};
-    scene.camera.position = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
-    scene.camera.target = Vec3(0.0);
-    scene.camera.up = Vec3(1, 0, 0);
+    Vec3 eye;
+
+    explicit HalfSpace(test::ScratchDir& dir) {
+        ObjectDesc o =
+            test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
+        o.medium.ior = n;
+        o.medium.g = g;
+        scene.objects = {o};
+        Light beam;
+        beam.type = Light::Type::Directional;
+        beam.direction = Vec3(std::sin(lightAngle), 0.0, -std::cos(lightAngle));
+        beam.power = Rgb(kPi);
+        scene.lights = {beam};
+        eye = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
+        scene.camera.position = eye;
+        scene.camera.target = Vec3(0.0);
+        scene.camera.up = Vec3(1, 0, 0);
+    }
+    // Inside: the beam along t_l, the view ray along t_v (Snell), the phase at their angle.
+    double closedForm() const {
+        const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
+        const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
+        const double cosScatter = -cosLight * cosView;  // t_l . (-t_v): both go down, in perpendicular planes
+        const double phase = (1.0 - g * g) / (4.0 * kPi * std::pow(1.0 + g * g - 2.0 * g * cosScatter, 1.5));
+        const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
+        const double radianceInside = albedo * phase * irradianceInside / (1.0 + cosView / cosLight);
+        return (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * radianceInside;
+    }
+};
+
+TEST(Refraction, HalfSpaceSingleScatteringIsTheClosedForm) {
+    test::ScratchDir dir;
+    const HalfSpace half(dir);
     PathSettings settings;
     settings.samplesPerPixel = 20000;
     settings.maxScatter = 1;
-    const test::SpotRadiance spot = test::spotRadiance(scene, settings);
-    const double mean = spot.mean;
-    // Inside: the beam along t_l, the view ray along t_v (Snell), the phase at their angle.
-    const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
-    const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
-    const double cosScatter = -cosLight * cosView;  // t_l . (-t_v): both go down, in perpendicular planes
-    const double phase = (1.0 - g * g) / (4.0 * kPi * std::pow(1.0 + g * g - 2.0 * g * cosScatter, 1.5));
-    const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
-    const double radianceInside = albedo * phase * irradianceInside / (1.0 + cosView / cosLight);
-    const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * radianceInside;
+    const test::SpotRadiance spot = test::spotRadiance(half.scene, settings);
+    const double mean = spot.mean, expected = half.closedForm();
     const double standardError = spot.standardError;
     std::printf("radiance %.6g +- %.2g (expected %.6g, %+.2f%%)\n", mean, standardError, expected,
                 100.0 * (mean / expected - 1.0));
     EXPECT_NEAR(mean, expected, std::max(3.0 * standardError, 0.005 * expected));
 }
 
-// The single-scattering reference refracts too: on the half-space of the test
-// above, its radiance for the central pixel is the same closed form, without
-// the path tracer's noise (tolerance: the quadrature's 1e-4 and the box's
-// far faces, 40 optical depths away).
+// The single-scattering reference refracts too: on the same half-space its
+// radiance for the central pixel is the closed form, without the path
+// tracer's noise (tolerance: the quadrature's 1e-5 and the box's far faces,
+// 40 optical depths away).
 TEST(Refraction, ReferenceOnTheHalfSpaceIsTheClosedForm) {
-    const double n = 1.5, sigmaT = 2.0, albedo = 0.8, g = 0.3;
-    const double lightAngle = radians(30.0), viewAngle = radians(45.0);
     test::ScratchDir dir;
-    SceneDesc scene;
-    ObjectDesc o =
-        test::simpleObject(test::writeBox(dir, "half.obj", Vec3(-40, -40, -20), Vec3(40, 40, 0)), sigmaT, albedo);
-    o.medium.ior = n;
-    o.medium.g = g;
-    scene.objects = {o};
-    Light beam;
-    beam.type = Light::Type::Directional;
-    beam.direction = Vec3(std::sin(lightAngle), 0.0, -std::cos(lightAngle));
-    beam.power = Rgb(kPi);
-    scene.lights = {beam};
+    const HalfSpace half(dir);
     std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const std::vector<VolumeObject> objects = loadObjects(half.scene, warnings);
     ReferenceSettings settings;
     settings.tolerance = 1e-5;
-    const Vec3 eye = 10.0 * Vec3(0.0, std::sin(viewAngle), std::cos(viewAngle));
-    const double radiance = ReferenceRenderer(scene, objects).radiance(eye, glm::normalize(-eye), settings).r;
-    const double cosLight = std::cos(std::asin(std::sin(lightAngle) / n));
-    const double cosView = std::cos(std::asin(std::sin(viewAngle) / n));
-    const double cosScatter = -cosLight * cosView;
-    const double phase = (1.0 - g * g) / (4.0 * kPi * std::pow(1.0 + g * g - 2.0 * g * cosScatter, 1.5));
-    const double irradianceInside = kPi * std::cos(lightAngle) * (1.0 - fresnelByAngles(lightAngle, n)) / cosLight;
-    const double expected = (1.0 - fresnelByAngles(viewAngle, n)) / (n * n) * albedo * phase * irradianceInside /
-                            (1.0 + cosView / cosLight);
+    const double radiance =
+        ReferenceRenderer(half.scene, objects).radiance(half.eye, glm::normalize(-half.eye), settings).r;
+    const double expected = half.closedForm();
     std::printf("reference %.8g, closed form %.8g (%+.4f%%)\n", radiance, expected,
                 100.0 * (radiance / expected - 1.0));
     EXPECT_NEAR(radiance, expected, 1e-3 * expected);
