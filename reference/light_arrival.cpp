@@ -31,4 +31,20 @@ Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x
     return transmitted;
 }
 
+Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
+                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir) {
+    Rgb sum(0.0);
+    for (const Light& light : lights) {
+        const std::optional<RefractedArrival> a = lightThroughBoundary(o, light, x);
+        if (!a) continue;
+        Rgb outside(1.0);
+        for (const VolumeObject& other : objects)
+            if (&other != &o)
+                outside *= transmittance(other.desc().medium.sigmaT, other.densityPath(a->entry, a->outward, a->outside));
+        sum += henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance * outside *
+               transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
+    }
+    return sum;
+}
+
 }  // namespace lucent

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/refraction.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
 
@@ -22,5 +23,11 @@ std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x);
 
 // exp(-sum over objects of sigma_t times the density path) per channel.
 Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x, const LightArrival& arrival);
+
+// sum over the lights of p(w_light, dir) E T at x inside o, each light arriving
+// through o's boundary (lightThroughBoundary) and dimmed inside o on its way to
+// x: the light a collision at x scatters along dir, as both ground truths gather it.
+Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
+                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir);
 
 }  // namespace lucent

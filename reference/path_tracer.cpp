@@ -12,7 +12,7 @@
 #include "core/progress.h"
 #include "reference/light_arrival.h"
 #include "reference/path_channels.h"
-#include "reference/refraction.h"
+#include "core/refraction.h"
 #include "reference/surface_reflection.h"
 
 namespace lucent {

@@ -8,7 +8,7 @@
 // exact exp(-sigma_t path integral), through every object, zero through a
 // blocker) before scattering by Henyey-Greenstein. An object whose ior is 1 has
 // an index-matched boundary; any other reflects and refracts by Fresnel's
-// equations, and the lights reach its inside through it (reference/refraction.h,
+// equations, and the lights reach its inside through it (core/refraction.h,
 // reference/refracted_paths.cpp). Blockers absorb. Paths end after maxScatter collisions (1: single scattering,
 // which must agree with --method reference) or by Russian roulette.
 //
@@ -23,7 +23,7 @@
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
-#include "reference/refraction.h"
+#include "core/refraction.h"
 
 namespace lucent {
 
@@ -84,7 +84,7 @@ private:
     Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings, int channel) const;
     // The object p lies in, or nullptr.
     const VolumeObject* containing(const Vec3& p) const;
-    // radiance() and walk() in a scene with a refracting boundary (reference/refraction.h):
+    // radiance() and walk() in a scene with a refracting boundary (core/refraction.h):
     // paths go from boundary to boundary, reflected or refracted by Fresnel's odds there.
     Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
                           int channel) const;

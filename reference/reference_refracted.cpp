@@ -11,7 +11,7 @@
 #include "reference/light_arrival.h"
 #include "reference/quadrature.h"
 #include "reference/reference_renderer.h"
-#include "reference/refraction.h"
+#include "core/refraction.h"
 
 namespace lucent {
 namespace {

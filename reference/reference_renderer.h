@@ -10,7 +10,7 @@
 // share and followed in turn (total internal reflection included), with the
 // 1/n^2 of radiance crossing in and n^2 crossing out; the light reaches each
 // point through the boundary as the path tracer's next-event estimation finds
-// it (reference/refraction.h). It is then what `--method path --max-scatter 1`
+// it (core/refraction.h). It is then what `--method path --max-scatter 1`
 // converges to, without its noise.
 #include <vector>
 

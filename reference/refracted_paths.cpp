@@ -14,7 +14,7 @@
 #include "reference/light_arrival.h"
 #include "reference/path_channels.h"
 #include "reference/path_tracer.h"
-#include "reference/refraction.h"
+#include "core/refraction.h"
 
 namespace lucent {
 namespace {

@@ -1,5 +1,5 @@
 // Refracting boundaries in the path tracer, against results computed here
-// independently of reference/refraction.cpp:
+// independently of core/refraction.cpp:
 // - Fresnel's equations in their angle form (Born and Wolf, Principles of
 //   Optics, 1.5.3: R_s = sin^2(i - t) / sin^2(i + t), R_p = tan^2(i - t) /
 //   tan^2(i + t)), and ((n - 1) / (n + 1))^2 at normal incidence;
@@ -12,7 +12,7 @@
 // - the single scattering of a half-space under a beam, seen from outside: a
 //   closed form with Snell's angles, both Fresnel transmissions and the n^2 law
 //   of radiance.
-#include "reference/refraction.h"
+#include "core/refraction.h"
 
 #include <gtest/gtest.h>
 
@@ -165,7 +165,7 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
         for (int b = 0; b < polar; ++b) {
             const double theta = (b + 0.5) / polar * kPi;
             const Vec3 x(r * std::sin(theta), 0.0, r * std::cos(theta));
-            const std::optional<RefractedArrival> arrival = lightThroughBoundary(sphere, objects, light, x);
+            const std::optional<RefractedArrival> arrival = lightThroughBoundary(sphere, light, x);
             if (!arrival) continue;
             const double attenuation = std::exp(-8.0 * sphere.densityPath(x, arrival->toLight, arrival->inside));
             removed += 8.0 * arrival->irradiance.r * attenuation * 2.0 * kPi * r * r * std::sin(theta) *

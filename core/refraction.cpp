@@ -1,10 +1,9 @@
-#include "reference/refraction.h"
+#include "core/refraction.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "reference/light_arrival.h"
 
 namespace lucent {
 namespace {
@@ -86,8 +85,7 @@ std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& or
     return std::nullopt;
 }
 
-std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
-                                                     const Light& light, const Vec3& x) {
+std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const Light& light, const Vec3& x) {
     const bool point = light.type == Light::Type::Point;
     const double diagonal = o.boundary().bounds().diagonal();
     auto target = [&](const Vec3& y) { return point ? glm::normalize(light.position - y) : -light.direction; };
@@ -172,23 +170,8 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     if (!(area > 0.0)) return std::nullopt;
     const double transmitted = 1.0 - fresnelReflectance(centre->cosine, 1.0 / o.desc().medium.ior);
     // power: the point light's intensity, or the directional light's irradiance (core/scene.h).
-    Rgb irradiance = light.power * (transmitted * step * step / area);
-    for (const VolumeObject& other : objects)
-        if (&other != &o)
-            irradiance *= transmittance(other.desc().medium.sigmaT, other.densityPath(y, toLight, distance));
-    return RefractedArrival{glm::normalize(y - x), solved->inside, irradiance};
-}
-
-Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
-                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir) {
-    Rgb sum(0.0);
-    for (const Light& light : lights) {
-        const std::optional<RefractedArrival> a = lightThroughBoundary(o, objects, light, x);
-        if (!a) continue;
-        sum += henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance *
-               transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
-    }
-    return sum;
+    const Rgb irradiance = light.power * (transmitted * step * step / area);
+    return RefractedArrival{glm::normalize(y - x), solved->inside, irradiance, y, toLight, distance};
 }
 
 }  // namespace lucent

@@ -1,5 +1,5 @@
 #pragma once
-// Smooth dielectric boundaries for the path tracer: an object whose medium has
+// Smooth dielectric boundaries, for every method that refracts: an object whose medium has
 // an index of refraction n != 1 reflects and refracts light at its boundary
 // (Fresnel's equations for unpolarised light, Snell's law about the shading
 // normal the runtime draws). Outside every object the index is 1.
@@ -45,23 +45,19 @@ std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& or
 
 // Light reaching x, a point inside o, through o's boundary.
 struct RefractedArrival {
-    Vec3 toLight;    // unit, at x, towards the boundary point the light enters at
-    double inside;   // distance from x to that point
-    Rgb irradiance;  // on a plane facing toLight at x: after the Fresnel transmission, the
-                     // bundle's focusing and every attenuation outside o (inside o: not yet)
+    Vec3 toLight;      // unit, at x, towards the boundary point the light enters at
+    double inside;     // distance from x to that point
+    Rgb irradiance;    // on a plane facing toLight at x: after the Fresnel transmission and the
+                       // bundle's focusing; no attenuation on the way (inside o, or by other objects)
+    Vec3 entry;        // the boundary point the light enters at
+    Vec3 outward;      // unit, from entry towards the light
+    double outside;    // distance from entry to a point light; infinity for a directional one
 };
 
 // None where no ray of the light reaches x by one refraction (total internal
 // reflection, the light's way blocked by the object itself, no convergence):
 // then that light does not reach x directly. Of several such rays (caustics
 // behind strongly curved parts) the solve finds the one nearest the straight line.
-std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
-                                                     const Light& light, const Vec3& x);
-
-// sum over the lights of p(w_light, dir) E T at x inside o, each light arriving
-// through o's boundary (lightThroughBoundary) and dimmed inside o on its way to
-// x: the light a collision at x scatters along dir, as both ground truths gather it.
-Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
-                          const std::vector<Light>& lights, const Vec3& x, const Vec3& dir);
+std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const Light& light, const Vec3& x);
 
 }  // namespace lucent
