@@ -193,7 +193,11 @@ ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Uni
     fp.addFile(o.mesh);
     for (const auto& b : o.medium.blockers) fp.addFile(b);
     if (o.medium.density.type == DensityDesc::Type::Grid) fp.addFile(o.medium.density.file);
-    fp.addText(medium.json().dump());
+    // The samples do not depend on the boundary's index of refraction (each
+    // method refracts at draw time): one sample file serves every ior.
+    Json hashed = medium.json();
+    if (hashed.is_object()) hashed.erase("ior");
+    fp.addText(hashed.dump());
     if (medium.json().contains("preset"))
         fp.addText("units " + units.name);  // the preset's coefficients depend on them
     o.fingerprint = fp.value();

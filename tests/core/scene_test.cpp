@@ -104,6 +104,9 @@ TEST(Scene, FingerprintFollowsMeshAndMedium) {
     };
     EXPECT_EQ(with("1"), with("1"));
     EXPECT_NE(with("1"), with("2"));
+    // The samples do not depend on the boundary's index: every method refracts at draw time.
+    EXPECT_EQ(with("1"), with("1, \"ior\": 1.5"));
+    EXPECT_NE(with("1, \"ior\": 1.5"), with("2, \"ior\": 1.5"));
     const uint64_t before = with("1");
     dir.write("m.obj", "v 0 0 1\n");
     EXPECT_NE(before, with("1"));
