@@ -6,6 +6,8 @@
 #include "core/error.h"
 #include "core/sample_set.h"
 #include "runtime/offscreen_context.h"
+#include "runtime/internal/refracted_view.h"
+#include "runtime/internal/sample_packing.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/scattering_renderer.h"
 
@@ -71,8 +73,9 @@ struct SsMethod::Retiring {
 
 std::vector<OptionSpec> SsOptions::specs() {
     return {OptionSpec::choice("light", "traced", {"traced", "sh"},
-                               "the light reaching each sample traced through the objects, or read from its SH "
-                               "attenuation (sh: the thesis; blurs narrow shadows, no shadows between objects)"),
+                               "the light reaching each sample traced through the objects (and refracted at their "
+                               "boundary), or read from its SH attenuation (sh: the thesis; blurs narrow shadows, no "
+                               "shadows between objects, boundaries index-matched)"),
             OptionSpec::choice("backend", "auto", {"auto", "egl", "osmesa"},
                                "the OpenGL backend (auto: EGL, then OSMesa)")};
 }
@@ -99,8 +102,43 @@ void SsMethod::prepare(const SceneDesc& desc, const MethodSettings& settings) {
 }
 
 std::vector<std::string> SsMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
-    std::vector<std::string> out = indexMatchedWarnings(scene, "ss");
+    std::vector<std::string> out = boundaryLimitations(scene, options_);
     for (std::string& line : sampleLimitations(scene, options_)) out.push_back(std::move(line));
+    return out;
+}
+
+std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene, const SsOptions& options) {
+    std::vector<std::string> out;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const VolumeObject& o = scene.objects[i];
+        const double ior = o.desc().medium.ior;
+        if (ior == 1.0 || !scene.hasSamples()) continue;
+        const std::string object = "object '" + o.desc().name + "': ior " + std::to_string(ior).substr(0, 4);
+        const bool fromFront = attenuatesFromFront(scene.samples[i]);
+        if (!drawnRefracted(ior, fromFront, options.tracedLight)) {
+            const std::string why = !options.tracedLight ? "with --light sh"
+                                    : scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
+                                        ? "optically thick, drawn in closed form"
+                                        : "its density varies within the object";
+            out.push_back(object + " is drawn index-matched (" + why +
+                          "): no refraction, no reflection at the boundary (--method path and reference refract)");
+            continue;
+        }
+        // Measured by lucent-bench-hybrid refraction (docs/results/refraction.md).
+        out.push_back(object +
+                      ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
+                      "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
+                      "from the refracting reference on the sphere, 13-15% on the wax bunny at ior 1.33-1.5");
+        // The refracted view starts where the camera's ray enters the object.
+        if (o.contains(scene.desc.camera.position))
+            out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
+        for (size_t k = 0; k < scene.objects.size(); ++k)
+            if (k != i && scene.objects.size() > 1) {
+                out.push_back(object + ": where another object stands in front of it, --method ss draws nothing of "
+                                       "it through that object");
+                break;
+            }
+    }
     return out;
 }
 

@@ -26,8 +26,12 @@ public:
     void prepare(const SceneDesc& desc, const MethodSettings& settings) override;
     Image render(const LoadedScene& scene, const MethodSettings& settings) override;
     std::string servedBy() const override { return backend_; }  // "egl" or "osmesa"
-    // sampleLimitations, and boundaries taken as index-matched.
+    // boundaryLimitations and sampleLimitations.
     std::vector<std::string> limitations(const LoadedScene& scene, const MethodSettings& settings) const override;
+    // Boundaries that refract (ior != 1) but are drawn index-matched (the light
+    // from the SH, a density that varies, an optically thick object), and the
+    // views a refracting one is not drawn in.
+    static std::vector<std::string> boundaryLimitations(const LoadedScene& scene, const SsOptions& options);
     // Lights inside an object or within a sample spacing of its boundary, other
     // objects in a light's way, and Gaussians far wider or narrower than their
     // spacing (docs/accuracy.md, Extremes): what every method drawing the samples shares.

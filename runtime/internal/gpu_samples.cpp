@@ -28,6 +28,7 @@ GpuSamples::GpuSamples(const SampleSet& samples)
       channels_(int(samples.channels)),
       parameters_(samples.parameters),
       homogeneous_(isHomogeneous(samples)),
+      fromFront_(lucent::attenuatesFromFront(samples)),
       slabs_(findSlabs(samples)) {
     if (samples.shOrder > kMaxSampleShOrder)
         throw Error("sample set has SH order " + std::to_string(samples.shOrder) + "; the runtime evaluates at most " +

@@ -44,13 +44,17 @@ public:
     void setTracedDepths(const std::vector<glm::vec4>& depths);
     bool tracedValid = false;
     // Whether the depths for this many lights fit one shader storage block (past
-    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE a shader reads undefined values).
-    bool tracedDepthsFit(int lights) const { return uint64_t(count_) * uint64_t(lights) * 16u <= maxBlockBytes_; }
+    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE a shader reads undefined values), at
+    // records vec4s per sample and light (2 for the light through a refracting boundary).
+    bool tracedDepthsFit(int lights, int records = 1) const {
+        return uint64_t(count_) * uint64_t(lights) * uint64_t(records) * 16u <= maxBlockBytes_;
+    }
     int shOrder() const { return shOrder_; }
     int channels() const { return channels_; }
     size_t size() const { return count_; }
     const SampleParameters& parameters() const { return parameters_; }
     bool homogeneous() const { return homogeneous_; }
+    bool attenuatesFromFront() const { return fromFront_; }  // sample_packing.h
     const SlabTable& slabs() const { return slabs_; }
 
 private:
@@ -62,6 +66,7 @@ private:
     int shOrder_ = 0, channels_ = 1;
     SampleParameters parameters_;
     bool homogeneous_ = true;
+    bool fromFront_ = false;
     SlabTable slabs_;
 };
 

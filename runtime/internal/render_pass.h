@@ -15,6 +15,7 @@
 #include "runtime/internal/blocker_shadows.h"
 #include "runtime/internal/gpu_mesh.h"
 #include "runtime/internal/gpu_samples.h"
+#include "runtime/internal/refracted_view.h"
 #include "runtime/scattering_renderer.h"
 #include "runtime/view_setup.h"
 
@@ -42,6 +43,7 @@ struct GpuObject {
     bool shadowsValid = false;
     Rgb albedo{0.0};
     bool opticallyThick = false;  // drawn in closed form by optically_thick.frag, no samples
+    RefractedView refractedView;  // the view through its boundary, when it refracts (SamplePass::refracted)
 };
 
 // The scene's lights in the kBindingLights buffer.

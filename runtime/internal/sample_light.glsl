@@ -79,8 +79,16 @@ float blockerVisibility(int j, vec3 x) {
 // It replaces psi_i's SH and the blocker shadows. TRACED_LIGHT is a program
 // variant (SamplePass): behind a uniform, llvmpipe evaluated the SH as well.
 layout(std430, binding = kBindingTracedDepths) readonly buffer TracedDepths { vec4 tracedDepths[]; };
+// REFRACTED_LIGHT (a program variant, with TRACED_LIGHT): the object's boundary
+// refracts, and each depth is followed by where that light arrives from and
+// how strongly (traced_light.h, tracedRefractedLight).
+#ifdef REFRACTED_LIGHT
+const int kTracedRecords = 2;
+#else
+const int kTracedRecords = 1;
+#endif
 vec3 tracedTransmittance(int i, int j) {
-    vec4 traced = tracedDepths[i * lightCount + j];
+    vec4 traced = tracedDepths[kTracedRecords * (i * lightCount + j)];
     return traced.w > 0.5 ? vec3(0.0) : exp(-extinctionScale * traced.rgb);
 }
 
@@ -204,6 +212,13 @@ Received receivedLight(int i, vec3 toCamera) {
         } else {
             toLight = -lights[j].position.xyz;
         }
+#ifdef REFRACTED_LIGHT
+        // Bent at the boundary: the light arrives along the refracted ray, with
+        // the boundary's transmission and its bundle's focusing instead of 1/d^2.
+        vec4 arrival = tracedDepths[2 * (i * lightCount + j) + 1];
+        toLight = arrival.xyz;
+        irradiance = lights[j].power.rgb * arrival.w;
+#endif
 #ifdef TRACED_LIGHT
         if (max(irradiance.r, max(irradiance.g, irradiance.b)) <= 0.0) continue;
         vec3 psi = tracedTransmittance(i, j);  // the depth holds the blockers

@@ -42,4 +42,8 @@ SlabTable findSlabs(const SampleSet& samples) {
     return table;
 }
 
+bool attenuatesFromFront(const SampleSet& samples) {
+    return samples.parameters.scheme == SampleScheme::Lucent && (isHomogeneous(samples) || !findSlabs(samples).empty());
+}
+
 }  // namespace lucent

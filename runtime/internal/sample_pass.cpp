@@ -37,7 +37,8 @@ SamplePass::SamplePass(double cutoff)
     : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))),
       keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {}
 
-const GlProgram& SamplePass::receivedProgram(bool tracedLight) const {
+const GlProgram& SamplePass::receivedProgram(bool tracedLight, bool refracted) const {
+    if (refracted) return receivedPrograms_.get({"TRACED_LIGHT", "REFRACTED_LIGHT"});
     return tracedLight ? receivedPrograms_.get({"TRACED_LIGHT"}) : receivedPrograms_.get();
 }
 
@@ -45,6 +46,7 @@ void SamplePass::setSampleUnits(const GlProgram& p) {
     setShNormalisation(p);
     glProgramUniform1i(p.id(), p.uniform("shadowDistances"), GLint(gpu::kUnitShadowDistances));
     glProgramUniform1i(p.id(), p.uniform("coefficients"), GLint(gpu::kUnitCoefficients));
+    glProgramUniform1i(p.id(), p.uniform("refractedRays"), GLint(gpu::kUnitRefractedRays));
 }
 
 const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const {
@@ -55,7 +57,9 @@ const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const
                                                      {variant.receivedCached, "RECEIVED_CACHED"},
                                                      {variant.oneChannel, "ONE_CHANNEL"},
                                                      {variant.tracedLight, "TRACED_LIGHT"},
-                                                     {variant.pointProxies, "POINT_PROXIES"}};
+                                                     {variant.pointProxies, "POINT_PROXIES"},
+                                                     {variant.refracted, "REFRACTED_LIGHT"},
+                                                     {variant.refracted, "REFRACTED_VIEW"}};
     std::vector<std::string> defines;
     for (const auto& [wanted, define] : features)
         if (wanted) defines.push_back(define);
@@ -67,29 +71,59 @@ bool SamplePass::pointProxiesCover(int width, int height) const {
     return float(width) <= covered && float(height) <= covered;
 }
 
+namespace {
+
+// The boundary refracts and the frame draws it so when the light is traced (drawnRefracted).
+bool boundaryRefracts(const GpuObject& o) {
+    return o.volume && !o.opticallyThick &&
+           drawnRefracted(o.volume->desc().medium.ior, o.samples->attenuatesFromFront(), true);
+}
+
+}  // namespace
+
 bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {
     return frame.options.tracedLight && o.volume && !o.opticallyThick && frame.lights.count > 0 &&
-           o.samples->tracedDepthsFit(frame.lights.count);
+           o.samples->tracedDepthsFit(frame.lights.count, boundaryRefracts(o) ? 2 : 1);
+}
+
+bool SamplePass::refracted(const GpuObject& o, const FrameContext& frame) {
+    return boundaryRefracts(o) && traced(o, frame);
 }
 
 void SamplePass::prepare(FrameContext& frame) {
-    pendingTraces_.clear();  // a frame that threw before draw(): waits for its traces, drops them
-    std::vector<TracedVolume> volumes;
-    for (const GpuObject& o : frame.objects)
-        if (o.volume) volumes.push_back({o.volume, o.placement});
-    for (GpuObject& o : frame.objects) {
-        // Traced on the CPU while the frame's targets are drawn, which leave a core
-        // idle while llvmpipe loads their programs (docs/runtime.md); draw() waits.
-        if (traced(o, frame) && !o.samples->tracedValid)
-            pendingTraces_.push_back({o.samples.get(), std::async(std::launch::async, [volumes, samples = o.sampleSet,
-                                                                                       placement = o.placement,
-                                                                                       lights = frame.lights.lights] {
-                                          return tracedOpticalDepths(volumes, *samples, placement, lights);
-                                      })});
+    startTraces(frame);
+    for (GpuObject& o : frame.objects)
         if (o.shadows && !o.shadowsValid && !traced(o, frame)) {
             o.shadows->render(frame.lights.lights, o.placement);
             o.shadowsValid = true;
         }
+}
+
+// Traced on the CPU while the frame's targets are drawn, which leave a core
+// idle while llvmpipe loads their programs (docs/runtime.md); draw() waits.
+void SamplePass::startTraces(FrameContext& frame) {
+    pendingTraces_.clear();  // a frame that threw before draw(): waits for its traces, drops them
+    pendingViews_.clear();
+    std::vector<TracedVolume> volumes;
+    for (const GpuObject& o : frame.objects)
+        if (o.volume) volumes.push_back({o.volume, o.placement});
+    size_t own = 0;  // o's place among the volumes
+    for (GpuObject& o : frame.objects) {
+        const bool bent = refracted(o, frame);
+        if (traced(o, frame) && !o.samples->tracedValid)
+            pendingTraces_.push_back(
+                {o.samples.get(),
+                 std::async(std::launch::async, [volumes, own, bent, samples = o.sampleSet, placement = o.placement,
+                                                 lights = frame.lights.lights] {
+                     return bent ? tracedRefractedLight(volumes, own, *samples, lights)
+                                 : tracedOpticalDepths(volumes, *samples, placement, lights);
+                 })});
+        if (bent && !o.refractedView.current(*o.volume, o.placement, *frame.scatterView))
+            pendingViews_.push_back({&o, std::async(std::launch::async, [volume = o.volume, placement = o.placement,
+                                                                         view = *frame.scatterView] {
+                                         return refractedViewRays(*volume, placement, view);
+                                     })});
+        if (o.volume) ++own;
     }
 }
 
@@ -123,7 +157,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     const bool tracedLight = traced(o, frame);
     if (o.samples->receivedValid && o.samples->receivedScale == scale && o.samples->receivedTraced == tracedLight)
         return;
-    const GlProgram& c = receivedProgram(tracedLight);
+    const GlProgram& c = receivedProgram(tracedLight, refracted(o, frame));
     glUseProgram(c.id());
     glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
     glUniform1i(c.uniform("channels"), o.samples->channels());
@@ -140,6 +174,9 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
 void SamplePass::draw(FrameContext& frame) {
     for (auto& [samples, depths] : pendingTraces_) samples->setTracedDepths(depths.get());
     pendingTraces_.clear();
+    for (PendingView& v : pendingViews_)
+        v.object->refractedView.upload(v.rays.get(), *v.object->volume, v.object->placement, *frame.scatterView);
+    pendingViews_.clear();
     if (!frame.options.scattering) return;
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
@@ -198,8 +235,10 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         variant.oneChannel = o.samples->channels() == 1;
         variant.tracedLight = traced(o, frame);
         variant.pointProxies = points;
+        variant.refracted = refracted(o, frame);
         const GlProgram& p = scatterProgram(variant);
-        const GlProgram& received = receivedProgram(variant.tracedLight);
+        const GlProgram& received = receivedProgram(variant.tracedLight, variant.refracted);
+        if (variant.refracted) o.refractedView.bind(gpu::kUnitRefractedRays);
         setFrameUniforms(p, frame);
         setSamplePlacement(p, o.placement);
         setSamplePlacement(received, o.placement);
@@ -226,7 +265,15 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
             glUniform4fv(p.uniform("slabExtinction"), GLsizei(extinction.size()), glm::value_ptr(extinction[0]));
         }
         glUniform1i(p.uniform("lightVaries"), lightVaries ? 1 : 0);
-        o.samples->draw();
+        if (!variant.refracted) {
+            o.samples->draw();
+            continue;
+        }
+        // Along each stretch of the pixels' rays inside, one draw each (refracted_view.h).
+        for (int k = 0; k < o.refractedView.stretches(); ++k) {
+            glUniform1i(p.uniform("stretch"), k);
+            o.samples->draw();
+        }
     }
 }
 

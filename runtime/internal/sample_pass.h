@@ -30,7 +30,16 @@ private:
     static void setSampleUnits(const GlProgram& program);  // SH normalisation and texture units
     // Whether object o's samples take their light traced this frame (DrawOptions::tracedLight).
     static bool traced(const GpuObject& o, const FrameContext& frame);
+    // Whether object o is drawn through its refracting boundary this frame: its
+    // medium's ior is not 1, its light is traced (through the boundary,
+    // REFRACTED_LIGHT) and its fragments attenuate from the front face, here
+    // where the refracted ray enters (REFRACTED_VIEW). Otherwise the boundary
+    // is drawn as index-matched (SsMethod::limitations says so).
+    static bool refracted(const GpuObject& o, const FrameContext& frame);
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
+    // Traces the light of the objects whose light is traced and no longer current,
+    // and the view through refracting boundaries, on other threads.
+    void startTraces(FrameContext& frame);
     void upsample(const FrameContext& frame) const;
     void addLight(const FrameContext& frame) const;
     // Every object's proxies into the bound target (points: POINT_PROXIES);
@@ -45,6 +54,12 @@ private:
     float largestPoint_ = 0.0f;  // GL_POINT_SIZE_RANGE's upper end, asked on the first draw
     // The traced depths prepare() started, set on their samples when draw() begins.
     std::vector<std::pair<GpuSamples*, std::future<std::vector<glm::vec4>>>> pendingTraces_;
+    // The refracted view rays prepare() started, uploaded when draw() begins.
+    struct PendingView {
+        GpuObject* object;
+        std::future<std::vector<RefractedStretch>> rays;
+    };
+    std::vector<PendingView> pendingViews_;
     // The scattering program's variants: the defines that shape scatter.vert,
     // scatter.geom, scatter.frag and sample_light.glsl (GlProgramVariants).
     struct ScatterVariant {
@@ -56,6 +71,7 @@ private:
         bool oneChannel = false;      // grey sigma_t: one integral for three channels (ONE_CHANNEL)
         bool tracedLight = false;     // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
         bool pointProxies = false;    // pointProxiesCover(): a point sprite per proxy (POINT_PROXIES)
+        bool refracted = false;       // refracted(): REFRACTED_LIGHT and REFRACTED_VIEW
     };
     // Whether kPointProxyTiles^2 points of the largest size cover a target of
     // this size (scatter.geom, POINT_PROXIES); otherwise squares of two triangles.
@@ -65,8 +81,9 @@ private:
                                         {GL_GEOMETRY_SHADER, "scatter.geom"},
                                         {GL_FRAGMENT_SHADER, "scatter.frag"}},
                                        setSampleUnits};
-    // The received light for isotropic media, traced or from the SH (TRACED_LIGHT).
-    const GlProgram& receivedProgram(bool tracedLight) const;
+    // The received light for isotropic media, traced or from the SH (TRACED_LIGHT),
+    // through a refracting boundary (REFRACTED_LIGHT).
+    const GlProgram& receivedProgram(bool tracedLight, bool refracted) const;
     GlProgramVariants receivedPrograms_{{{GL_COMPUTE_SHADER, "received.comp"}}, setSampleUnits};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};

@@ -37,6 +37,16 @@ uniform int regionAxis;         // 0, 1 or 2
 #ifdef COUNT_USEFUL_FRAGMENTS
 uniform float discardBelow;     // diagnostics only (the render benchmark's useful fragments)
 #endif
+#ifdef REFRACTED_VIEW
+// REFRACTED_VIEW (a program variant): the object's boundary refracts, and each
+// pixel's ray goes on inside along its refracted direction, from where the
+// camera's ray enters (runtime/internal/refracted_view.h), in view space.
+// Stretch k of a pixel's ray (refracted_view.h): layer 2k its origin (w: the
+// share of the pixel's radiance it carries out, 0: none), 2k + 1 its direction
+// (w: its length inside). This draw integrates along stretch `stretch`.
+uniform sampler2DArray refractedRays;
+uniform int stretch;
+#endif
 #ifdef DENSITY_SLABS
 // The density slabs along regionAxis (runtime/scattering_pass.h), when sigma_t is
 // constant in each: [lo, hi] and sigma_t. Compiled only into the program for
@@ -86,25 +96,26 @@ float gaussianSegment(vec3 c, float s, float logAmplitude, vec3 dir, float t0, f
 // and a Gaussian times exp(G' . (x - c)) is exp(|G'|^2 s^2 / 2) times the Gaussian
 // centred at c + G' s^2. Every exponent is summed before any exp (gaussianSegment).
 // Also gives the shifted centre (the benchmark's useful fragments).
-float shiftedSegment(vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1, float logOffset,
-                     out vec3 shifted) {
+// The ray starts at the view's origin; centre is the Gaussian's relative to it.
+float shiftedSegment(vec3 centre, vec3 gradient, float extinction, vec3 dir, float front, float t0, float t1,
+                     float logOffset, out vec3 shifted) {
     float s2 = f.width * f.width;
     float logScale = dot(gradient, f.anchorOffset) + logOffset;
 #ifdef VIEW_FROM_FRONT
-    logScale -= extinction * (dot(dir, f.viewCentre) - front);
+    logScale -= extinction * (dot(dir, centre) - front);
     gradient -= extinction * dir;
 #else
     if (f.viewDepth >= 0.0) {
         // Where the front face jumps (a concave object's silhouette in front of
         // another part of it) this pixel's front says nothing about the centre's
         // ray: beyond two widths, or a factor e^2, the correction stops growing.
-        float shift = f.viewDepth - (dot(dir, f.viewCentre - f.anchorOffset) - front);
+        float shift = f.viewDepth - (dot(dir, centre - f.anchorOffset) - front);
         float limit = min(2.0 * f.width, 2.0 / max(extinction, 1e-30));
         logScale += extinction * (clamp(shift, -limit, limit) - dot(dir, f.anchorOffset));
         gradient -= extinction * dir;
     }
 #endif
-    shifted = f.viewCentre + gradient * s2;
+    shifted = centre + gradient * s2;
     return gaussianSegment(shifted, f.width, logScale + 0.5 * dot(gradient, gradient) * s2, dir, t0, t1);
 }
 
@@ -130,8 +141,33 @@ vec3 otherSlabsDepth(float origin, float direction, float front, float entry) {
 }
 #endif
 
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+// The stretch of this pixel's ray the Gaussian is integrated over: the ray
+// origin + t dir for t in [t0, t1], attenuated towards the eye from t = front,
+// where it entered the objects at t = firstEntry; weight: the share of its
+// radiance that reaches the eye. False: the Gaussian adds nothing here.
+struct Stretch {
+    vec3 origin, dir;
+    float front, firstEntry, t0, t1, weight;
+};
+
+#ifdef REFRACTED_VIEW
+bool stretchAt(ivec2 pixel, out Stretch r) {
+    vec4 origin = texelFetch(refractedRays, ivec3(pixel, 2 * stretch), 0);
+    if (!(origin.w > 0.0)) return false;
+    // This object must be the first thing the camera's ray meets: not hidden by
+    // the host's geometry, nor behind another object (refracted_view.h).
+    vec4 inside = texelFetch(insideSegments, pixel, 0);
+    float entry = length(texelFetch(refractedRays, ivec3(pixel, 0), 0).xyz);
+    if (!(inside.y > inside.x) || inside.x < entry * (1.0 - 1e-3)) return false;
+    // Attenuated towards the eye over the stretches before this one too.
+    float before = 0.0;
+    for (int k = 0; k < stretch; ++k) before += texelFetch(refractedRays, ivec3(pixel, 2 * k + 1), 0).w;
+    vec4 direction = texelFetch(refractedRays, ivec3(pixel, 2 * stretch + 1), 0);
+    r = Stretch(origin.xyz, direction.xyz, -before, 0.0, 0.0, direction.w, origin.w);
+    return true;
+}
+#else
+bool stretchAt(ivec2 pixel, out Stretch r) {
     vec4 inside = texelFetch(insideSegments, pixel, 0);
     vec3 dir = normalize(vec3(gl_FragCoord.xy * pixelToView.xy + pixelToView.zw, -1.0));
     // The interval inside the objects nearest the Gaussian's centre along the ray:
@@ -145,14 +181,23 @@ void main() {
                   max(max(inside.z - tc, tc - inside.w), 0.0) < max(max(inside.x - tc, tc - inside.y), 0.0);
     float a = second ? inside.z : inside.x, b = second ? inside.w : inside.y;
     float before = second ? inside.y - inside.x : 0.0;
-    if (!(b > a)) discard;  // the ray misses the objects, or the host hides them
-    float front = a - before;
-    float t0 = a, t1 = b;
+    r = Stretch(vec3(0.0), dir, a - before, inside.x, a, b, 1.0);
+    return b > a;  // otherwise the ray misses the objects, or the host hides them
+}
+#endif
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    Stretch ray;
+    if (!stretchAt(pixel, ray)) discard;
+    vec3 dir = ray.dir;
+    float front = ray.front;
+    float t0 = ray.t0, t1 = ray.t1;
     vec3 slabsBefore = vec3(0.0);
 #ifdef SAMPLE_REGIONS
     {
         // The part of the ray inside the sample's density slab.
-        float o = objectCamera[regionAxis], d = (viewToObject * dir)[regionAxis];
+        float o = (objectCamera + viewToObject * ray.origin)[regionAxis], d = (viewToObject * dir)[regionAxis];
         vec2 span = slabInterval(f.region, o, d);
         t0 = max(t0, span.x);
         t1 = min(t1, span.y);
@@ -160,22 +205,23 @@ void main() {
         // From the first entry: across the air between parts too (a concave object
         // of slabs is not exact here).
 #ifdef VIEW_FROM_FRONT
-        if (t1 > t0) slabsBefore = otherSlabsDepth(o, d, inside.x, t0);
+        if (t1 > t0) slabsBefore = otherSlabsDepth(o, d, ray.firstEntry, t0);
 #endif
 #endif
     }
 #endif
     if (t1 <= t0) discard;  // the interval misses the sample's slab
+    vec3 centre = f.viewCentre - ray.origin;
 
     vec3 integral;
     vec3 shifted[3];
-    integral.r = shiftedSegment(f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r, shifted[0]);
+    integral.r = shiftedSegment(centre, f.gradient[0], f.extinction.r, dir, front, t0, t1, -slabsBefore.r, shifted[0]);
 #ifdef ONE_CHANNEL
     integral.gb = integral.rr;
     shifted[1] = shifted[2] = shifted[0];
 #else
-    integral.g = shiftedSegment(f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g, shifted[1]);
-    integral.b = shiftedSegment(f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b, shifted[2]);
+    integral.g = shiftedSegment(centre, f.gradient[1], f.extinction.g, dir, front, t0, t1, -slabsBefore.g, shifted[1]);
+    integral.b = shiftedSegment(centre, f.gradient[2], f.extinction.b, dir, front, t0, t1, -slabsBefore.b, shifted[2]);
 #endif
 #ifdef COUNT_USEFUL_FRAGMENTS
     // Useful: some channel's integrand, the Gaussian shifted by the light's
@@ -185,5 +231,5 @@ void main() {
     for (int k = 0; k < 3; ++k) largest = max(largest, gaussianSegment(shifted[k], f.width, 0.0, dir, t0, t1));
     if (largest < discardBelow * f.width * sqrt(2.0 * PI)) discard;
 #endif
-    colour = vec4(f.radiance * integral, 1.0);
+    colour = vec4(f.radiance * integral * ray.weight, 1.0);
 }

@@ -7,6 +7,7 @@
 // A sample near the boundary of its region gets a second square for its mirror
 // image (preprocess/sample_weights.h), which reaches inside only that far.
 layout(points) in;
+uniform vec2 viewportSize;  // pixels
 #ifdef POINT_PROXIES
 // POINT_PROXIES (a program variant, SamplePass::scatterProgram): each proxy is
 // one point sprite, a square on the screen's axes around the exact bounding box
@@ -19,7 +20,6 @@ layout(points) in;
 // centred inside it; SamplePass uses this variant only on targets that many
 // points cover.
 layout(points, max_vertices = 2 * kPointProxyTiles * kPointProxyTiles) out;
-uniform vec2 viewportSize;  // pixels
 uniform float largestPoint;  // pixels
 #else
 layout(triangle_strip, max_vertices = 8) out;
@@ -34,6 +34,7 @@ in VertexOut {
     vec3 extinction;
     float viewDepth;
     vec2 region;
+    vec4 apparent;
 } v[];
 
 out GeometryOut {
@@ -190,9 +191,61 @@ vec4 reach(vec3 g) {
     return vec4(centre, r + view * s2 * min(turn, 2.0));
 }
 
+#ifdef REFRACTED_VIEW
+// Through a refracting boundary (scatter.vert, apparentCentre): a square on the
+// screen about where the sample is seen, wide enough that every pixel whose
+// stretch passes within the sphere lies inside. The pixels' stretches pass
+// apparent.w apart near the sample, so those within the sphere's radius lie
+// within that radius over apparent.w of the pixel whose stretch passes
+// nearest; the sphere's offset from the centre and that stretch's own miss are
+// added on, and the spacing is taken a little narrower (kRaySpreadMargin), as
+// it varies across the square. A sample no stretch passes within its sphere
+// is seen nowhere. The depth is the near plane's: the stretches' lengths
+// inside are not the camera's, so the reach depth says nothing.
+const float kRaySpreadMargin = 0.85;
+const float kMostMagnified = 3.0;
+void refractedProxy(vec3 gaussian, vec4 sphere) {
+    vec4 seen = v[0].apparent;
+    float radius = distance(sphere.xyz, v[0].viewCentre) + sphere.w;
+    if (!(seen.w > 0.0) || seen.z > radius) return;
+    float halfSize = (radius + seen.z) / (kRaySpreadMargin * seen.w) + 0.5;
+    // Where neighbouring stretches meet (a caustic of the view) their spacing says
+    // little: no wider than kMostMagnified times the sphere seen straight.
+    float straight = radius * projection[1][1] * 0.5 * viewportSize.y / max(-v[0].viewCentre.z, 1e-6);
+    halfSize = min(halfSize, kMostMagnified * straight + 0.5);
+    proxyDepth = -1.0;
+#ifdef POINT_PROXIES
+    emitPoints(gaussian, seen.xy - halfSize, seen.xy + halfSize);
+#else
+    vec2 lo = max(seen.xy - halfSize, vec2(0.0)) / viewportSize * 2.0 - 1.0;
+    vec2 hi = min(seen.xy + halfSize, viewportSize) / viewportSize * 2.0 - 1.0;
+    if (any(lessThanEqual(hi, lo))) return;
+    emit(gaussian, vec4(lo.x, lo.y, 0.0, 1.0));
+    emit(gaussian, vec4(hi.x, lo.y, 0.0, 1.0));
+    emit(gaussian, vec4(lo.x, hi.y, 0.0, 1.0));
+    emit(gaussian, vec4(hi.x, hi.y, 0.0, 1.0));
+    EndPrimitive();
+#endif
+}
+#endif
+
 void main() {
     if (max(v[0].radiance.r, max(v[0].radiance.g, v[0].radiance.b)) <= 0.0) return;
     vec4 sphere = reach(v[0].viewCentre);
+#ifdef REFRACTED_VIEW
+    refractedProxy(v[0].viewCentre, sphere);
+    // The image only where the cap of its sphere on the sample's side reaches (below).
+    vec3 offset = v[0].viewImage - v[0].viewCentre;
+    if (length(offset) > 0.0) {
+        vec4 image = reach(v[0].viewImage);
+        vec3 normal = normalize(offset);
+        float a = dot(image.xyz - (v[0].viewCentre + 0.5 * offset), normal);
+        if (a < image.w)
+            refractedProxy(v[0].viewImage, vec4(image.xyz - max(a, 0.0) * normal,
+                                                sqrt(image.w * image.w - max(a, 0.0) * max(a, 0.0))));
+    }
+    return;
+#endif
     proxy(v[0].viewCentre, sphere.xyz, sphere.w);
     // The image's integrand counts only on the sample's side of the boundary,
     // which lies halfway to the image (the fragments integrate inside the

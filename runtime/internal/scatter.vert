@@ -50,7 +50,80 @@ out VertexOut {
     vec3 extinction;
     float viewDepth;   // eye distance from the front face to the centre on the centre's ray; < 0: unknown
     vec2 region;
+    vec4 apparent;     // REFRACTED_VIEW: where the centre is seen (apparentCentre)
 } v;
+
+#ifdef REFRACTED_VIEW
+// REFRACTED_VIEW (a program variant, SamplePass::scatterProgram): the object's
+// boundary refracts the view (runtime/internal/refracted_view.h). A sample is
+// seen where the pixels' refracted rays pass through it, not where it projects.
+uniform sampler2DArray refractedRays;  // per pixel, view space: stretch k's origin (w > 0: it has one), then its direction
+uniform int stretch;                   // the stretch this draw integrates along
+
+vec2 windowOf(vec3 p, vec2 size) {
+    vec4 clip = projection * vec4(p, 1.0);
+    return (clip.xy / clip.w * 0.5 + 0.5) * size;
+}
+
+// The point of pixel p's stretch nearest c; w < 0 where the pixel has none.
+vec4 nearestOnRay(ivec2 p, vec3 c) {
+    ivec2 size = textureSize(refractedRays, 0).xy;
+    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) return vec4(0.0, 0.0, 0.0, -1.0);
+    vec4 e = texelFetch(refractedRays, ivec3(p, 2 * stretch), 0);
+    if (!(e.w > 0.0)) return vec4(0.0, 0.0, 0.0, -1.0);
+    vec3 r = texelFetch(refractedRays, ivec3(p, 2 * stretch + 1), 0).xyz;
+    return vec4(e.xyz + max(dot(c - e.xyz, r), 0.0) * r, 1.0);
+}
+
+const int kApparentSteps = 8;
+const int kApparentSearch = 2;  // the square of pixels searched about where the steps end
+
+// Where the view-space centre c is seen: xy the window position of the pixel
+// whose stretch passes nearest c, z how near, w the distance between the
+// rays of neighbouring pixels there (the proxy's scale on screen; 0 when no
+// neighbour has a ray); its ray's direction in towardsEye. The pixel moves by
+// how far its ray's nearest point appears from c on the screen. Through a
+// boundary of index n the rays spread by 1/n to 1 of the camera's own, so a
+// step leaves at most 1 - 1/n of the error (a flat boundary; more where it is
+// strongly curved): eight steps take the error below a pixel.
+vec4 apparentCentre(vec3 c, out vec3 towardsEye) {
+    vec2 size = vec2(textureSize(refractedRays, 0).xy);
+    vec2 q = clamp(windowOf(c, size), vec2(0.5), size - 0.5);
+    vec2 best = q;
+    float nearest = 1e30;
+    for (int k = 0; k < kApparentSteps; ++k) {
+        vec4 x = nearestOnRay(ivec2(q), c);
+        if (x.w < 0.0) break;
+        float miss = distance(x.xyz, c);
+        if (miss < nearest) {
+            nearest = miss;
+            best = floor(q) + 0.5;
+        }
+        q = clamp(q + windowOf(c, size) - windowOf(x.xyz, size), vec2(0.5), size - 0.5);
+    }
+    // The steps stop within a pixel or two of the nearest; the pixels around settle it.
+    ivec2 around = ivec2(best);
+    for (int j = -kApparentSearch; j <= kApparentSearch; ++j)
+        for (int i = -kApparentSearch; i <= kApparentSearch; ++i) {
+            vec4 x = nearestOnRay(around + ivec2(i, j), c);
+            float miss = x.w < 0.0 ? 1e30 : distance(x.xyz, c);
+            if (miss < nearest) {
+                nearest = miss;
+                best = vec2(around + ivec2(i, j)) + 0.5;
+            }
+        }
+    ivec2 p = ivec2(best);
+    towardsEye = -texelFetch(refractedRays, ivec3(p, 2 * stretch + 1), 0).xyz;
+    vec4 x = nearestOnRay(p, c);
+    float spacing = 1e30;
+    for (int k = 0; k < 4; ++k) {
+        vec4 y = nearestOnRay(p + ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0)), c);
+        if (y.w >= 0.0 && x.w >= 0.0) spacing = min(spacing, distance(x.xyz, y.xyz));
+    }
+    if (nearest == 1e30) return vec4(q, 0.0, 0.0);  // no ray found: drawn nowhere
+    return vec4(best, nearest, spacing == 1e30 ? 0.0 : spacing);
+}
+#endif
 
 // |G| s beyond this extrapolates the exponential past where the centre's light
 // says anything about it (the light then changes by e^3 within one sigma).
@@ -61,6 +134,14 @@ void main() {
     vec3 centre = sampleCentre(i);
     float s = sampleWidth(i);
     vec3 toCamera = normalize(cameraPosition - centre);
+    v.apparent = vec4(0.0);
+#ifdef REFRACTED_VIEW
+    {
+        vec3 towardsEye;
+        v.apparent = apparentCentre((view * vec4(centre, 1.0)).xyz, towardsEye);
+        if (v.apparent.w > 0.0) toCamera = normalize(transpose(mat3(view)) * towardsEye);
+    }
+#endif
 #ifdef RECEIVED_CACHED
     Received received = cachedReceived[i];
 #else

@@ -3,7 +3,63 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <functional>
+
+#include "core/refraction.h"
+
 namespace lucent {
+namespace {
+
+// The optical depth from x (renderer's world) along unit dir over reach, summed
+// over the volumes but skip, or that a blocker stops the light.
+struct Depth {
+    Rgb tau{0.0};
+    bool blocked = false;
+};
+Depth depthAlong(const std::vector<TracedVolume>& volumes, const TracedVolume* skip, const Vec3& x, const Vec3& dir,
+                 double reach) {
+    Depth d;
+    for (const TracedVolume& v : volumes) {
+        if (&v == skip) continue;
+        // The ray in the volume's own world: through its object space.
+        const Similarity& own = v.volume->placement();
+        const double toOwn = own.scale / v.placement.scale;  // its lengths per world length
+        const Vec3 origin = own.point(v.placement.inversePoint(x));
+        const Vec3 ownDir = own.direction(v.placement.inverseDirection(dir));
+        const double path = v.volume->densityPath(origin, ownDir, reach * toOwn);
+        if (path == kInfinity) {
+            d.blocked = true;
+            return d;
+        }
+        d.tau += v.volume->desc().medium.sigmaT * (path / toOwn);
+    }
+    return d;
+}
+
+glm::vec4 packed(const Depth& d) {
+    return d.blocked ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(glm::vec3(d.tau), 0.0f);
+}
+
+// The light in the volume's own world, for a renderer that stands it at
+// placement, with a power of 1: what arrives is then per unit of its power.
+Light unitLightInOwnWorld(const Light& light, const TracedVolume& v) {
+    const Similarity& own = v.volume->placement();
+    Light l = light;
+    l.power = Rgb(1.0);
+    if (l.type == Light::Type::Point)
+        l.position = own.point(v.placement.inversePoint(light.position));
+    else
+        l.direction = own.direction(v.placement.inverseDirection(light.direction));
+    return l;
+}
+
+void forEachSample(size_t count, const std::function<void(size_t)>& body) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+    });
+}
+
+}  // namespace
 
 std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volumes, const SampleSet& samples,
                                            const Similarity& placement, const std::vector<Light>& lights) {
@@ -11,43 +67,65 @@ std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volu
     std::vector<glm::vec4> depths(samples.size() * lightCount, glm::vec4(0.0f));
     if (depths.empty()) return depths;
     for (const TracedVolume& v : volumes) v.volume->boundary();  // built once here, not raced for by the rays
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            const Vec3 x = placement.point(Vec3(samples.positions[i]));
-            for (size_t j = 0; j < lightCount; ++j) {
-                const Light& light = lights[j];
-                Vec3 dir;
-                double reach = kInfinity;
-                if (light.type == Light::Type::Point) {
-                    reach = glm::length(light.position - x);
-                    if (!(reach > 0.0)) continue;  // a light at the centre: nothing in between
-                    dir = (light.position - x) / reach;
-                } else {
-                    const double length = glm::length(light.direction);
-                    if (!(length > 0.0)) continue;
-                    dir = -light.direction / length;
-                }
-                Rgb tau(0.0);
-                bool blocked = false;
-                for (const TracedVolume& v : volumes) {
-                    // The ray in the volume's own world: through its object space.
-                    const Similarity& own = v.volume->placement();
-                    const double toOwn = own.scale / v.placement.scale;  // its lengths per world length
-                    const Vec3 origin = own.point(v.placement.inversePoint(x));
-                    const Vec3 ownDir = own.direction(v.placement.inverseDirection(dir));
-                    const double path = v.volume->densityPath(origin, ownDir, reach * toOwn);
-                    if (path == kInfinity) {
-                        blocked = true;
-                        break;
-                    }
-                    tau += v.volume->desc().medium.sigmaT * (path / toOwn);
-                }
-                depths[i * lightCount + j] =
-                    blocked ? glm::vec4(0.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(glm::vec3(tau), 0.0f);
+    forEachSample(samples.size(), [&](size_t i) {
+        const Vec3 x = placement.point(Vec3(samples.positions[i]));
+        for (size_t j = 0; j < lightCount; ++j) {
+            const Light& light = lights[j];
+            Vec3 dir;
+            double reach = kInfinity;
+            if (light.type == Light::Type::Point) {
+                reach = glm::length(light.position - x);
+                if (!(reach > 0.0)) continue;  // a light at the centre: nothing in between
+                dir = (light.position - x) / reach;
+            } else {
+                const double length = glm::length(light.direction);
+                if (!(length > 0.0)) continue;
+                dir = -light.direction / length;
             }
+            depths[i * lightCount + j] = packed(depthAlong(volumes, nullptr, x, dir, reach));
         }
     });
     return depths;
+}
+
+std::vector<glm::vec4> tracedRefractedLight(const std::vector<TracedVolume>& volumes, size_t own,
+                                            const SampleSet& samples, const std::vector<Light>& lights) {
+    const size_t lightCount = lights.size();
+    std::vector<glm::vec4> records(2 * samples.size() * lightCount, glm::vec4(0.0f));
+    if (records.empty()) return records;
+    for (const TracedVolume& v : volumes) v.volume->boundary();
+    const TracedVolume& o = volumes.at(own);
+    const Similarity& ownWorld = o.volume->placement();
+    const double toOwn = ownWorld.scale / o.placement.scale;
+    std::vector<Light> ownLights;
+    for (const Light& light : lights) ownLights.push_back(unitLightInOwnWorld(light, o));
+    forEachSample(samples.size(), [&](size_t i) {
+        // The sample in the volume's own world (samples are in object space).
+        const Vec3 x = ownWorld.point(Vec3(samples.positions[i]));
+        for (size_t j = 0; j < lightCount; ++j) {
+            const std::optional<RefractedArrival> a = lightThroughBoundary(*o.volume, ownLights[j], x);
+            if (!a) continue;  // records of zero: no light
+            // Inside along the refracted way, then on through the others from where it entered.
+            const double path = o.volume->densityPath(x, a->toLight, a->inside);
+            Depth d;
+            if (path == kInfinity) {
+                d.blocked = true;
+            } else {
+                const Vec3 entry = o.placement.point(ownWorld.inversePoint(a->entry));
+                const Vec3 outward = o.placement.direction(ownWorld.inverseDirection(a->outward));
+                d = depthAlong(volumes, &o, entry, outward, a->outside / toOwn);
+                d.tau += o.volume->desc().medium.sigmaT * (path / toOwn);
+            }
+            // A point light's irradiance is per unit area of the volume's world: toOwn^2
+            // of it per unit area of the renderer's. A directional one's is a ratio of areas.
+            const double perPower = a->irradiance.r * (lights[j].type == Light::Type::Point ? toOwn * toOwn : 1.0);
+            const Vec3 toLight = o.placement.direction(ownWorld.inverseDirection(a->toLight));
+            const size_t k = 2 * (i * lightCount + j);
+            records[k] = packed(d);
+            records[k + 1] = glm::vec4(glm::vec3(toLight), float(perPower));
+        }
+    });
+    return records;
 }
 
 }  // namespace lucent

@@ -32,4 +32,17 @@ struct TracedVolume {
 std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volumes, const SampleSet& samples,
                                            const Similarity& placement, const std::vector<Light>& lights);
 
+// The same for the samples of an object whose boundary refracts (ior != 1,
+// volumes[own]): the light reaches each sample through the boundary
+// (lightThroughBoundary, core/refraction.h), bent, not along the straight line.
+// Two records per sample and light, at [2 (i * lights.size() + j)] and the one
+// after: the optical depth as above, along the refracted way inside and the
+// straight way on from the boundary through the other objects; and xyz the unit
+// direction at the sample towards where the light enters, w the irradiance
+// there per unit of the light's power (its Fresnel transmission and the
+// focusing of its bundle; 0 where no ray of that light reaches the sample by
+// one refraction).
+std::vector<glm::vec4> tracedRefractedLight(const std::vector<TracedVolume>& volumes, size_t own,
+                                            const SampleSet& samples, const std::vector<Light>& lights);
+
 }  // namespace lucent
