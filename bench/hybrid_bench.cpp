@@ -8,6 +8,7 @@
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z]
+//   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N]
 //   every subcommand also takes [--record docs/results/hybrid-SUBCOMMAND.md]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
@@ -18,6 +19,11 @@
 // path on the sphere and the bunny (no surface term), for every grid and albedo
 // (and, for mdom, every direction count); the path tracer renders twice, and its
 // own noise, measured from the two, is taken out of the errors.
+// refraction: on the sphere (sigma_t 2, albedo 0.75) and the wax bunny (sigma_t
+// 8, albedo 0.95, one point light) at each ior: ss against the refracting
+// single-scattering reference, and ss, lbl and mdom against the path tracer
+// (its noise taken out); and ss's whole render at ior 1 and at that ior, the
+// median of repeats, measured in the same run.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -150,6 +156,78 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
         }
 }
 
+// The scenes of issue 41: the bundled sphere, and the bunny as wax.
+SceneDesc refractionScene(const std::string& model, double ior) {
+    SceneDesc s = sceneOf(model, model == "sphere" ? 0.75 : 0.95);
+    if (model == "bunny") {
+        s.objects[0].medium.sigmaT = Rgb(8.0);
+        s.lights.resize(1);
+    }
+    s.objects[0].medium.ior = ior;
+    return s;
+}
+
+double medianRenderSeconds(const LoadedScene& loaded, const MethodSettings& settings, int repeats) {
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+        Stopwatch stopwatch;
+        renderWith(findMethod("ss"), loaded, settings);
+        times.push_back(stopwatch.seconds());
+    }
+    return median(times);
+}
+
+void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats) {
+    out.print(
+        "relative RMSE of luminance, %dx%d, no surface term: ss against --method reference (single scattering, "
+        "refracting), and ss, lbl and mdom (default options) against --method path at %d paths per pixel (its "
+        "noise taken out); ss's whole render (s), the median of %d, at ior 1 and at the ior\n\n",
+        size, size, spp, repeats);
+    out.tableHeader({"model", "ior", "path noise", "ss vs single", "ss", "lbl", "mdom", "lbl mean ratio",
+                     "ss at ior 1 (s)", "ss (s)", "ratio", "reference (s)", "path (s)"},
+                    {false, true, true, true, true, true, true, true, true, true, true, true, true});
+    for (const std::string model : {"sphere", "bunny"}) {
+        SceneDesc matched = refractionScene(model, 1.0);
+        matched.camera.width = matched.camera.height = size;
+        LoadedScene indexMatched = loadScene(matched, false);
+        // The samples do not depend on the ior: one set serves every row.
+        const SampleSet samples = preprocessObject(indexMatched.objects[0], qualityPreset("default"));
+        attachSamples(indexMatched, {samples});
+        MethodSettings settings;
+        settings.surface = false;
+        const double matchedSeconds = medianRenderSeconds(indexMatched, settings, repeats);
+        for (double ior : iors) {
+            SceneDesc scene = refractionScene(model, ior);
+            scene.camera = matched.camera;
+            LoadedScene loaded = loadScene(scene, false);
+            attachSamples(loaded, {samples});
+            const MethodEntry& pathEntry = findMethod("path");
+            const MethodOptions paths = MethodOptions(pathEntry.options).set("samples", spp);
+            Stopwatch stopwatch;
+            settings.seed = 1;
+            const Image pathA = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
+            const double pathSeconds = stopwatch.seconds();
+            settings.seed = 2;
+            const Image pathB = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
+            stopwatch.restart();
+            const Image single = renderWith(findMethod("reference"), loaded, settings);
+            const double referenceSeconds = stopwatch.seconds();
+            const Image ss = renderWith(findMethod("ss"), loaded, settings);
+            const double ssSeconds = medianRenderSeconds(loaded, settings, repeats);
+            const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
+            const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
+            const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
+            Image path = pathA;
+            for (size_t i = 0; i < path.pixels.size(); ++i) path.pixels[i] = 0.5f * (pathA.pixels[i] + pathB.pixels[i]);
+            out.print("| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f |\n",
+                      model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
+                      luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,
+                      luminanceRelativeRmse(mdom, pathA, pathB).debiased, meanLuminance(lbl) / meanLuminance(path),
+                      matchedSeconds, ssSeconds, ssSeconds / matchedSeconds, referenceSeconds, pathSeconds);
+        }
+    }
+}
+
 // Thesis Table 5.1: the sphere lit by a point light, N directions, a fixed
 // number of scattering iterations; time per iteration and per octant sweep,
 // device memory, and after each iteration the share of the converged light
@@ -247,14 +325,23 @@ int main(int argc, char** argv) {
     int mdomMoments = 16;
     md->add_option("--moments", mdomMoments, "Stored moments (4, 9, 16, 25, 36); fewer fit larger grids")
         ->check(CLI::IsMember({4, 9, 16, 25, 36}));
+    std::vector<double> iors{1.33, 1.5};
+    int refractionRepeats = 3, refractionSpp = 1024, refractionSize = 64;
+    auto* rf = app.add_subcommand("refraction", "ss, lbl and mdom at refracting boundaries: accuracy and ss's time");
+    rf->add_option("--iors", iors, "Indices of refraction")->delimiter(',')->check(CLI::Range(1.0, 4.0));
+    rf->add_option("--spp", refractionSpp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
+    rf->add_option("--size", refractionSize, "Image width and height")->check(CLI::Range(8, 2048));
+    rf->add_option("--repeats", refractionRepeats, "ss renders timed per row")->check(CLI::Range(1, 100));
     std::string recordFile;
-    for (CLI::App* sub : {sp, ac, md})
+    for (CLI::App* sub : {sp, ac, md, rf})
         sub->add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        if (md->parsed())
+        if (rf->parsed())
+            refraction(out, iors, refractionSpp, refractionSize, refractionRepeats);
+        else if (md->parsed())
             mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
         else if (sp->parsed())
             speed(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);

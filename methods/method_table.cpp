@@ -19,7 +19,7 @@ namespace lucent {
 const std::vector<MethodEntry>& methodTable() {
     const auto always = [] { return std::string(); };
     static const std::vector<MethodEntry> table = {
-        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4)", true, true, always,
+        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4), refraction included", true, true, always,
          SsOptions::specs(), SsMethod::create},
         {"reference", "exact single scattering by quadrature on the CPU, refraction included (the ground truth of ss)",
          false, false, always, ReferenceMethod::options(), ReferenceMethod::create},
@@ -85,15 +85,17 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // ("What auto picks"). Single scattering alone misses light that grows with
     // the albedo; below kSingleScatteringAlbedo it stays within the goal.
     // Only the path tracer gives full transport through a boundary whose ior is
-    // not 1 (the reference refracts, but single scattering only): the fast
-    // methods are far from it there whatever the albedo.
+    // not 1 within the goal: ss, lbl and mdom refract their single scattering,
+    // but lbl's and mdom's multiple scattering does not reflect at the boundary,
+    // and ss misses its own goal on detailed meshes (docs/accuracy.md).
     for (const ObjectDesc& o : scene.objects)
         if (o.medium.ior != 1.0)
             return {"path",
                     "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
-                        ": only the path tracer gives full transport through a refracting boundary (on the sphere "
-                        "at ior 1.33, ss is 88% from it at albedo 0.1 and 19% at 0.75, lbl 38% at 0.75); "
-                        "it is slow: lower --samples or set --noise for a draft"};
+                        ": only the path tracer gives full transport through a refracting boundary within 10% (lbl "
+                        "is 10-11% from it on the sphere and 23-26% on the wax bunny, mdom 11-22%, ss 13-15% from "
+                        "single scattering on the bunny: docs/results/refraction.md); it is slow: "
+                        "lower --samples or set --noise for a draft"};
     double albedo = 0.0;
     for (const ObjectDesc& o : scene.objects)
         albedo = std::max({albedo, o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});
