@@ -102,6 +102,28 @@ double meanLuminance(const Image& image) {
     return sum / std::max<size_t>(1, image.pixels.size());
 }
 
+// The truth twice, with independent seeds: its own noise is measured and
+// taken out of every error (luminanceRelativeRmse of three images); seconds is
+// the time of one of them.
+struct PathTruth {
+    Image a, b, mean;
+    double seconds = 0.0;
+};
+PathTruth pathTruth(const LoadedScene& loaded, MethodSettings settings, int spp) {
+    const MethodEntry& entry = findMethod("path");
+    const MethodOptions paths = MethodOptions(entry.options).set("samples", spp);
+    PathTruth t;
+    Stopwatch stopwatch;
+    settings.seed = 1;
+    t.a = renderWith(entry, *entry.create(paths), loaded, settings);
+    t.seconds = stopwatch.seconds();
+    settings.seed = 2;
+    t.b = renderWith(entry, *entry.create(paths), loaded, settings);
+    t.mean = t.a;
+    for (size_t i = 0; i < t.mean.pixels.size(); ++i) t.mean.pixels[i] = 0.5f * (t.a.pixels[i] + t.b.pixels[i]);
+    return t;
+}
+
 void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size,
               double g, const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
               const std::vector<std::string>& models, const std::vector<double>& light) {
@@ -121,19 +143,10 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
             MethodSettings settings;
             settings.surface = false;
-            const MethodEntry& pathEntry = findMethod("path");
-            const MethodOptions paths = MethodOptions(pathEntry.options).set("samples", spp);
-            // The truth twice, with independent seeds: its own noise is
-            // measured and taken out of every error (luminanceRelativeRmse of
-            // three images). path_s is the time of one of them.
+            const PathTruth truth = pathTruth(loaded, settings, spp);
+            const Image &pathA = truth.a, &pathB = truth.b, &path = truth.mean;
+            const double pathSeconds = truth.seconds;
             Stopwatch stopwatch;
-            settings.seed = 1;
-            const Image pathA = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
-            const double pathSeconds = stopwatch.seconds();
-            settings.seed = 2;
-            const Image pathB = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
-            Image path = pathA;
-            for (size_t i = 0; i < path.pixels.size(); ++i) path.pixels[i] = 0.5f * (pathA.pixels[i] + pathB.pixels[i]);
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
             const NoisyReferenceError ssError = luminanceRelativeRmse(ss, pathA, pathB);
             for (int grid : grids)
@@ -201,15 +214,9 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             scene.camera = matched.camera;
             LoadedScene loaded = loadScene(scene, false);
             attachSamples(loaded, {samples});
-            const MethodEntry& pathEntry = findMethod("path");
-            const MethodOptions paths = MethodOptions(pathEntry.options).set("samples", spp);
+            const PathTruth truth = pathTruth(loaded, settings, spp);
+            const Image &pathA = truth.a, &pathB = truth.b, &path = truth.mean;
             Stopwatch stopwatch;
-            settings.seed = 1;
-            const Image pathA = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
-            const double pathSeconds = stopwatch.seconds();
-            settings.seed = 2;
-            const Image pathB = renderWith(pathEntry, *pathEntry.create(paths), loaded, settings);
-            stopwatch.restart();
             const Image single = renderWith(findMethod("reference"), loaded, settings);
             const double referenceSeconds = stopwatch.seconds();
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
@@ -217,13 +224,11 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
-            Image path = pathA;
-            for (size_t i = 0; i < path.pixels.size(); ++i) path.pixels[i] = 0.5f * (pathA.pixels[i] + pathB.pixels[i]);
             out.print("| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f |\n",
                       model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
                       luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,
                       luminanceRelativeRmse(mdom, pathA, pathB).debiased, meanLuminance(lbl) / meanLuminance(path),
-                      matchedSeconds, ssSeconds, ssSeconds / matchedSeconds, referenceSeconds, pathSeconds);
+                      matchedSeconds, ssSeconds, ssSeconds / matchedSeconds, referenceSeconds, truth.seconds);
         }
     }
 }
