@@ -12,6 +12,7 @@
 
 #include <cstdio>
 
+#include "bench/path_truth.h"
 #include "bench/results_record.h"
 #include "core/error.h"
 #include "core/image_compare.h"
@@ -24,32 +25,6 @@ using namespace lucent;
 namespace fs = std::filesystem;
 
 namespace {
-
-double meanLuminance(const Image& image) {
-    double sum = 0.0;
-    for (const glm::vec3& c : image.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-    return sum / double(std::max<size_t>(1, image.pixels.size()));
-}
-
-struct Truth {
-    Image a, b, mean;
-    double seconds = 0.0;
-};
-
-Truth pathTruth(const LoadedScene& scene, MethodSettings settings, int spp) {
-    const MethodEntry& path = findMethod("path");
-    const MethodOptions options = MethodOptions(path.options).set("samples", spp);
-    Truth t;
-    const Stopwatch stopwatch;
-    settings.seed = 1;
-    t.a = renderWith(path, *path.create(options), scene, settings);
-    t.seconds = stopwatch.seconds();
-    settings.seed = 2;
-    t.b = renderWith(path, *path.create(options), scene, settings);
-    t.mean = t.a;
-    for (size_t i = 0; i < t.mean.pixels.size(); ++i) t.mean.pixels[i] = 0.5f * (t.a.pixels[i] + t.b.pixels[i]);
-    return t;
-}
 
 // One scene: its table, one row per method, the truth first.
 void gallery(ResultsRecord& out, const fs::path& sceneFile, int size, int spp, const fs::path& images,
@@ -67,7 +42,7 @@ void gallery(ResultsRecord& out, const fs::path& sceneFile, int size, int spp, c
 
     const std::string name = sceneFile.stem().string();
     std::fprintf(stderr, "lucent: gallery: %s: the truth, %d paths per pixel twice\n", name.c_str(), spp);
-    const Truth truth = pathTruth(loaded, settings, spp);
+    const PathTruth truth = pathTruth(loaded, settings, spp);
     const float exposure = autoExposure(truth.mean);
     const auto picture = [&](const std::string& method, const Image& image) {
         const fs::path file = images / (name + "-" + method + ".png");

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/path_truth.h"
 #include "bench/results_record.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -94,34 +95,6 @@ void speed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<
             for (bool concurrent : {true, false}) run(grid, albedo, 16, concurrent);
     for (int k : ks)
         if (k != 16) run(grids.front(), albedos.front(), k, true);
-}
-
-double meanLuminance(const Image& image) {
-    double sum = 0.0;
-    for (const glm::vec3& c : image.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-    return sum / std::max<size_t>(1, image.pixels.size());
-}
-
-// The truth twice, with independent seeds: its own noise is measured and
-// taken out of every error (luminanceRelativeRmse of three images); seconds is
-// the time of one of them.
-struct PathTruth {
-    Image a, b, mean;
-    double seconds = 0.0;
-};
-PathTruth pathTruth(const LoadedScene& loaded, MethodSettings settings, int spp) {
-    const MethodEntry& entry = findMethod("path");
-    const MethodOptions paths = MethodOptions(entry.options).set("samples", spp);
-    PathTruth t;
-    Stopwatch stopwatch;
-    settings.seed = 1;
-    t.a = renderWith(entry, *entry.create(paths), loaded, settings);
-    t.seconds = stopwatch.seconds();
-    settings.seed = 2;
-    t.b = renderWith(entry, *entry.create(paths), loaded, settings);
-    t.mean = t.a;
-    for (size_t i = 0; i < t.mean.pixels.size(); ++i) t.mean.pixels[i] = 0.5f * (t.a.pixels[i] + t.b.pixels[i]);
-    return t;
 }
 
 void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size,
