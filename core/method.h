@@ -52,18 +52,6 @@ public:
     virtual std::vector<std::string> limitations(const LoadedScene&, const MethodSettings&) const { return {}; }
 };
 
-// One warning per object whose ior differs from 1, for a method that treats
-// every boundary as index-matched: no bending, no reflection.
-inline std::vector<std::string> indexMatchedWarnings(const LoadedScene& scene, const std::string& method) {
-    std::vector<std::string> out;
-    for (const VolumeObject& o : scene.objects)
-        if (o.desc().medium.ior != 1.0)
-            out.push_back("object '" + o.desc().name + "': ior " + std::to_string(o.desc().medium.ior) +
-                          " is treated as index-matched by --method " + method +
-                          ": no refraction, no reflection at the boundary (--method path and reference refract)");
-    return out;
-}
-
 // One row of the method table.
 struct MethodEntry {
     std::string name;           // what --method takes

@@ -45,13 +45,13 @@ std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& or
 
 // Light reaching x, a point inside o, through o's boundary.
 struct RefractedArrival {
-    Vec3 toLight;      // unit, at x, towards the boundary point the light enters at
-    double inside;     // distance from x to that point
-    Rgb irradiance;    // on a plane facing toLight at x: after the Fresnel transmission and the
-                       // bundle's focusing; no attenuation on the way (inside o, or by other objects)
-    Vec3 entry;        // the boundary point the light enters at
-    Vec3 outward;      // unit, from entry towards the light
-    double outside;    // distance from entry to a point light; infinity for a directional one
+    Vec3 toLight;    // unit, at x, towards the boundary point the light enters at
+    double inside;   // distance from x to that point
+    Rgb irradiance;  // on a plane facing toLight at x: after the Fresnel transmission and the
+                     // bundle's focusing; no attenuation on the way (inside o, or by other objects)
+    Vec3 entry;      // the boundary point the light enters at
+    Vec3 outward;    // unit, from entry towards the light
+    double outside;  // distance from entry to a point light; infinity for a directional one
 };
 
 // None where no ray of the light reaches x by one refraction (total internal

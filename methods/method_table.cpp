@@ -19,8 +19,8 @@ namespace lucent {
 const std::vector<MethodEntry>& methodTable() {
     const auto always = [] { return std::string(); };
     static const std::vector<MethodEntry> table = {
-        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4), refraction included", true, true, always,
-         SsOptions::specs(), SsMethod::create},
+        {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4), refraction included", true,
+         true, always, SsOptions::specs(), SsMethod::create},
         {"reference", "exact single scattering by quadrature on the CPU, refraction included (the ground truth of ss)",
          false, false, always, ReferenceMethod::options(), ReferenceMethod::create},
         {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",

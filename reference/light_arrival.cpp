@@ -40,7 +40,8 @@ Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>
         Rgb outside(1.0);
         for (const VolumeObject& other : objects)
             if (&other != &o)
-                outside *= transmittance(other.desc().medium.sigmaT, other.densityPath(a->entry, a->outward, a->outside));
+                outside *=
+                    transmittance(other.desc().medium.sigmaT, other.densityPath(a->entry, a->outward, a->outside));
         sum += henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance * outside *
                transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
     }

@@ -134,8 +134,9 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
         for (size_t k = 0; k < scene.objects.size(); ++k)
             if (k != i && scene.objects.size() > 1) {
-                out.push_back(object + ": where another object stands in front of it, --method ss draws nothing of "
-                                       "it through that object");
+                out.push_back(object +
+                              ": where another object stands in front of it, --method ss draws nothing of "
+                              "it through that object");
                 break;
             }
     }

@@ -31,7 +31,7 @@ LUCENT_GPU_CONSTANT(kUnitGridExtinction, 3)   // and its extinction
 LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the two intervals inside the objects
 LUCENT_GPU_CONSTANT(kUnitGridRefraction, 5)   // a multiple-scattering grid's index and its gradient
 LUCENT_GPU_CONSTANT(kUnitCoefficients, 6)     // float texture buffer: SH coefficients [sample][channel][coefficient]
-LUCENT_GPU_CONSTANT(kUnitRefractedRays, 7)    // per pixel, its ray's stretches inside a refracting object (refracted_view.h)
+LUCENT_GPU_CONSTANT(kUnitRefractedRays, 7)    // per pixel, its stretches inside a refracting object
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)

@@ -65,8 +65,8 @@ std::vector<RefractedStretch> refractedViewRays(const VolumeObject& volume, cons
     const glm::dmat3 viewToWorld = glm::transpose(worldToView);
     const glm::dmat4 P(view.projection);
     // View-space direction through pixel centre (x, y) at z = -1 (SamplePass's pixelToView).
-    const glm::dvec4 pixelToView(2.0 / (view.width * P[0][0]), 2.0 / (view.height * P[1][1]),
-                                 (P[2][0] - 1.0) / P[0][0], (P[2][1] - 1.0) / P[1][1]);
+    const glm::dvec4 pixelToView(2.0 / (view.width * P[0][0]), 2.0 / (view.height * P[1][1]), (P[2][0] - 1.0) / P[0][0],
+                                 (P[2][1] - 1.0) / P[1][1]);
     const Similarity& own = volume.placement();
     const double toOwn = own.scale / placement.scale;  // the volume's lengths per world length
     const Vec3 origin = own.point(placement.inversePoint(Vec3(view.cameraPosition)));
@@ -74,8 +74,8 @@ std::vector<RefractedStretch> refractedViewRays(const VolumeObject& volume, cons
     tbb::parallel_for(tbb::blocked_range<int>(0, view.height, 8), [&](const tbb::blocked_range<int>& r) {
         for (int y = r.begin(); y != r.end(); ++y)
             for (int x = 0; x < view.width; ++x) {
-                const Vec3 inView = glm::normalize(Vec3((x + 0.5) * pixelToView.x + pixelToView.z,
-                                                        (y + 0.5) * pixelToView.y + pixelToView.w, -1.0));
+                const Vec3 inView = glm::normalize(
+                    Vec3((x + 0.5) * pixelToView.x + pixelToView.z, (y + 0.5) * pixelToView.y + pixelToView.w, -1.0));
                 const Vec3 dir = own.direction(placement.inverseDirection(viewToWorld * inView));
                 const auto stretches = stretchesOf(volume, origin, dir);
                 for (size_t k = 0; k < K; ++k) {
@@ -138,8 +138,8 @@ void RefractedView::upload(const std::vector<RefractedStretch>& rays, const Volu
                 any = any || s.origin.w > 0.0f;
             }
             if (any) stretches_ = std::max(stretches_, int(k) + 1);
-            glTextureSubImage3D(texture_, 0, 0, 0, GLint(2 * k) + half, view.width, view.height, 1, GL_RGBA,
-                                GL_FLOAT, layer.data());
+            glTextureSubImage3D(texture_, 0, 0, 0, GLint(2 * k) + half, view.width, view.height, 1, GL_RGBA, GL_FLOAT,
+                                layer.data());
         }
     volume_ = &volume;
     placement_ = placement;

@@ -3,8 +3,9 @@
 // from the flat faces: Snell's law, Fresnel's equations in their angle form
 // (Born and Wolf, Principles of Optics, 1.5.3), the n^2 law of radiance, the
 // reflection back inside where the refracted ray leaves (the same form, from
-// inside, and total past the critical angle), the compression of a parallel beam (its irradiance times cos i / cos t) and the
-// paraxial image of a point light under a flat boundary. No GL context.
+// inside, and total past the critical angle), the compression of a parallel
+// beam (its irradiance times cos i / cos t) and the paraxial image of a point
+// light under a flat boundary. No GL context.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -105,7 +106,7 @@ TEST(RefractedView, EachPixelsRayObeysSnellFresnelAndTheBox) {
             Vec3 face(0.0);
             for (int k = 0; k < 3; ++k)
                 if (std::abs(std::abs(exit[k]) - 1.0) < 1e-9) face[k] = exit[k] > 0.0 ? 1.0 : -1.0;
-            if (glm::length(face) != 1.0) continue;  // through an edge: either face's normal
+            if (glm::length(face) != 1.0) continue;                // through an edge: either face's normal
             const double inner = std::acos(glm::dot(bent, face));  // incidence inside
             const double sinOut = kIor * std::sin(inner);
             const double share = sinOut >= 1.0 ? 1.0 : angleFormReflectance(std::asin(sinOut), inner);
