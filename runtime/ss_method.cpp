@@ -132,13 +132,10 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
         // The refracted view starts where the camera's ray enters the object.
         if (o.contains(scene.desc.camera.position))
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
-        for (size_t k = 0; k < scene.objects.size(); ++k)
-            if (k != i && scene.objects.size() > 1) {
-                out.push_back(object +
-                              ": where another object stands in front of it, --method ss draws nothing of "
-                              "it through that object");
-                break;
-            }
+        if (scene.objects.size() > 1)
+            out.push_back(object +
+                          ": where another object stands in front of it, --method ss draws nothing of it through "
+                          "that object");
     }
     return out;
 }
