@@ -61,6 +61,21 @@ double fresnelReflectance(double cosIncident, double eta) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
+double diffuseFresnelReflectance(double eta) {
+    // Below mu_c (past the critical angle) R = 1 and gives mu_c^2. Above it R
+    // goes as sqrt(mu - mu_c) near mu_c: with mu = mu_c + (1 - mu_c) u^2 the
+    // integrand is smooth in u, and Simpson's rule on 512 intervals is exact to ~1e-10.
+    const double muC = eta > 1.0 ? std::sqrt(1.0 - 1.0 / (eta * eta)) : 0.0;
+    constexpr int kIntervals = 512;
+    double sum = 0.0;
+    for (int i = 0; i <= kIntervals; ++i) {
+        const double u = double(i) / kIntervals, mu = muC + (1.0 - muC) * u * u;
+        const double w = i == 0 || i == kIntervals ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * fresnelReflectance(mu, eta) * mu * 2.0 * (1.0 - muC) * u;
+    }
+    return muC * muC + 2.0 * sum / (3.0 * kIntervals);
+}
+
 std::optional<Vec3> refractedDirection(const Vec3& w, const Vec3& facing, double eta) {
     const double cosI = -glm::dot(w, facing);
     const double sin2T = eta * eta * std::max(0.0, 1.0 - cosI * cosI);

@@ -25,6 +25,13 @@ namespace lucent {
 // cosIncident (> 0) to its normal, eta = n_from / n_to. 1 past the critical angle.
 double fresnelReflectance(double cosIncident, double eta);
 
+// Fresnel reflectance averaged over a hemisphere of diffuse light (radiance the
+// same from every direction, so cosine-weighted): 2 int_0^1 R(mu, eta) mu dmu.
+// With eta = n (light inside an object of index n meeting the air) it is the
+// share of diffuse light that the boundary keeps inside, all of it past the
+// critical angle (Egan and Hilgeman's F_dr, here integrated, not fitted).
+double diffuseFresnelReflectance(double eta);
+
 // Direction w (unit) refracted through a boundary whose unit normal faces
 // against w, eta = n_from / n_to; none under total internal reflection.
 std::optional<Vec3> refractedDirection(const Vec3& w, const Vec3& facing, double eta);

@@ -23,6 +23,7 @@ struct ScatteringGrid {
     // floats, smoothed across the boundary; empty when the medium is
     // index-matched. View rays then bend along the eikonal equation (thesis 4.3).
     std::vector<float> refraction;
+    double ior = 1.0;  // the medium's own index inside (refraction's, before smoothing)
 
     size_t voxelCount() const { return index().count(); }
     GridIndex index() const { return {dims}; }

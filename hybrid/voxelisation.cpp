@@ -91,6 +91,7 @@ Voxelisation voxelise(const VolumeObject& object, int resolution) {
     // its gradient, by central differences, is smooth enough to march (thesis 4.3).
     const double ior = object.desc().medium.ior;
     v.refracting = ior != 1.0;
+    v.ior = ior;
     v.refraction.assign(s.count(), glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
     if (!v.refracting) return v;
     std::vector<float> n(s.count());

@@ -48,6 +48,7 @@ struct Voxelisation {
     std::vector<glm::vec4> material;    // rgb: sigma_t * occupancy; a: occupancy in [0, 1], or kOpaque
     std::vector<glm::vec4> refraction;  // x: index n; yzw: grad n per world unit
     bool refracting = false;            // n differs from 1 somewhere
+    double ior = 1.0;                   // the medium's index, inside
 };
 
 Voxelisation voxelise(const VolumeObject& object, int resolution);

@@ -24,7 +24,7 @@ LUCENT_CL_CONSTANT(kFixedBits, 40)
 // A light ray of the photon marching pass (thesis 4.4).
 typedef struct {
     float4 position;  // xyz: world position; w: 1 while the ray marches, 0 once it has left
-    float4 velocity;  // xyz: n times the unit direction (thesis eq. 4.1-4.2)
+    float4 velocity;  // xyz: n times the unit direction (thesis eq. 4.1-4.2); w: 1 once it has entered the medium
     float4 power;     // rgb: power the ray still carries, W
 } PhotonRay;
 

@@ -23,6 +23,16 @@
 //
 // Voxels: material.a = occupancy (0: empty, light that arrives there has left
 // the object) or kOpaque (a blocker: light that arrives there is absorbed).
+//
+// A boundary that refracts (ior n != 1) keeps a share r of the light that
+// reaches it from inside: a packet streaming from a medium voxel into an empty
+// one comes back into its voxel reversed with r of its power, and 1 - r leaves.
+// A lattice direction stands for the flux through a voxel's face, and the light
+// near a boundary of a scattering medium is close to diffuse, so r is Fresnel's
+// reflectance averaged over a diffuse hemisphere (diffuseFresnelReflectance,
+// core/refraction.h): 0.47 at n = 1.33, 0.60 at n = 1.5. This is the partial-
+// current boundary condition of diffusion theory, J- = r J+ (Groenhuis et al.
+// 1983; Jensen et al. 2001, eq. 6-7), on the lattice's staircase boundary.
 
 float3 interaction(float4 m, float lambda) { return -expm1(-m.xyz * lambda); }
 
@@ -39,11 +49,21 @@ void collide(const float4* in, float4 source, float4 kt, float4 albedo, float4* 
     for (int d = 0; d < kDirections; ++d) out[d] = (1.0f - kt) * in[d] + isotropic;
 }
 
-// Where a packet that arrives at a voxel goes: into f (medium), escaped (empty), absorbed (opaque).
-void arrive(float4 m, float4 packet, float4* f, float4* escaped, float4* absorbed) {
+// Where a packet that arrives at a voxel goes: into f (medium), escaped (empty:
+// but the share r the boundary reflects, which its own voxel took back), absorbed (opaque).
+void arrive(float4 m, float4 packet, float r, float4* f, float4* escaped, float4* absorbed) {
     if (m.w > 0.0f) *f = packet;
     else if (m.w < 0.0f) { *absorbed += packet; *f = (float4)(0.0f); }
-    else { *escaped += packet; *f = (float4)(0.0f); }
+    else { *escaped += (1.0f - r) * packet; *f = (float4)(0.0f); }
+}
+
+// Whether a packet moving along d into medium voxel c comes back off the boundary:
+// the voxel it would come from, c - kStep[d], is empty (not a blocker, and in the grid).
+bool mirrored(global const float4* material, int4 dims, int3 c, float4 m, int d, float r) {
+    if (r <= 0.0f || m.w <= 0.0f) return false;
+    int3 from = c - kStep[d];
+    if (any(from < 0) || any(from >= dims.xyz)) return false;
+    return material[from.x + dims.x * (from.y + dims.y * (size_t)from.z)].w == 0.0f;
 }
 
 // ---- The global lattice: one work-item per voxel, one step per pair of launches.
@@ -64,16 +84,20 @@ kernel void lattice_collide(global const float4* f, global float4* source, globa
 }
 
 kernel void lattice_stream(global const float4* out, global const float4* material, global float4* f,
-                           global float4* escaped, global float4* absorbed, int4 dims) {
+                           global float4* escaped, global float4* absorbed, int4 dims, float r) {
     int3 c = (int3)(get_global_id(0), get_global_id(1), get_global_id(2));
     size_t at = c.x + dims.x * (c.y + dims.y * (size_t)c.z);
     float4 m = material[at], esc = escaped[at], abs = absorbed[at];
     for (int d = 0; d < kDirections; ++d) {
+        if (mirrored(material, dims, c, m, d, r)) {  // its own packet along the reverse of d, reflected
+            f[6 * at + d] = r * out[6 * at + (d ^ 1)];
+            continue;
+        }
         int3 from = c - kStep[d];
         float4 packet = (float4)(0.0f);
         if (all(from >= 0) && all(from < dims.xyz)) packet = out[6 * (from.x + dims.x * (from.y + dims.y * (size_t)from.z)) + d];
         float4 fd;
-        arrive(m, packet, &fd, &esc, &abs);
+        arrive(m, packet, r, &fd, &esc, &abs);
         f[6 * at + d] = fd;
     }
     escaped[at] = esc;
@@ -98,7 +122,7 @@ kernel void lattice_blocks(global float4* f, global float4* source, global const
                            global float4* fluence, global float4* absorbed, global float4* escaped,
                            global const float4* interfaceIn, global float4* interfaceOut,
                            global const int* activeBlocks, global const int* blockActive, int4 dims,
-                           float4 albedo, float lambda, int subSteps) {
+                           float4 albedo, float lambda, int subSteps, float r) {
     local float4 lf[kBlockVoxels * kDirections], lout[kBlockVoxels * kDirections];
     int3 blocks = dims.xyz / kBlockEdge;
     int b = activeBlocks[get_group_id(0)];
@@ -123,11 +147,13 @@ kernel void lattice_blocks(global float4* f, global float4* source, global const
             int nbi = nb.x + blocks.x * (nb.y + blocks.y * nb.z);
             if (blockActive[nbi]) {
                 float4 packet = interfaceIn[(nbi * kDirections + d) * kBlockEdge * kBlockEdge + faceSlot(lc, axis)];
-                arrive(m, fd + packet, &fd, &esc, &abs);
+                arrive(m, fd + packet, r, &fd, &esc, &abs);
             }
         }
         lf[6 * l + d] = fd;
     }
+    bool mirror[6];
+    for (int d = 0; d < kDirections; ++d) mirror[d] = mirrored(material, dims, c, m, d, r);
     barrier(CLK_LOCAL_MEM_FENCE);
     const float4 kt = (float4)(interaction(m, lambda), 0.0f);
     for (int s = 0; s < subSteps; ++s) {
@@ -143,7 +169,8 @@ kernel void lattice_blocks(global float4* f, global float4* source, global const
             if (all(from >= 0) && all(from < kBlockEdge))
                 packet = lout[6 * (from.x + kBlockEdge * (from.y + kBlockEdge * from.z)) + d];
             float4 fd;
-            arrive(m, packet, &fd, &esc, &abs);
+            if (mirror[d]) fd = r * lout[6 * l + (d ^ 1)];  // its own packet, reflected (any block's boundary)
+            else arrive(m, packet, r, &fd, &esc, &abs);
             lf[6 * l + d] = fd;
             if (lc[axis] == ((d & 1) ? 0 : kBlockEdge - 1)) leaving[d] += lout[6 * l + d];
         }
@@ -156,7 +183,7 @@ kernel void lattice_blocks(global float4* f, global float4* source, global const
         int3 nb = bc + kStep[d];
         bool flows = all(nb >= 0) && all(nb < blocks) && blockActive[nb.x + blocks.x * (nb.y + blocks.y * nb.z)];
         if (flows) interfaceOut[(b * kDirections + d) * kBlockEdge * kBlockEdge + faceSlot(lc, axis)] = leaving[d];
-        else esc += leaving[d];
+        else esc += (mirrored(material, dims, c, m, d ^ 1, r) ? 1.0f - r : 1.0f) * leaving[d];  // r came back
     }
     fluence[at] = phi;
     absorbed[at] = abs;

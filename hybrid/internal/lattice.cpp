@@ -2,11 +2,21 @@
 
 #include <algorithm>
 
+#include "core/refraction.h"
+
 namespace lucent::hybrid {
 
 namespace {
 constexpr size_t kInterfaceFloat4PerBlock = 6 * 16;
 }  // namespace
+
+double latticeBoundaryReflectance(double ior) {
+    if (ior == 1.0) return 0.0;
+    const double ri = diffuseFresnelReflectance(ior);
+    const double a = (1.0 + ri) / (1.0 - ri);
+    const double aLattice = std::max(1.0, 2.0 * a / 3.0);
+    return (aLattice - 1.0) / (aLattice + 1.0);
+}
 
 size_t Lattice::bytesFor(size_t voxels, bool blocked) {
     // f, (out), source, two materials, fluence, absorbed, escaped, two interfaces
@@ -45,6 +55,8 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
     const auto& d = grid.shape.dims;
     const cl_int4 dims{{d[0], d[1], d[2], 0}};
     const float lambda = float(grid.shape.voxel);
+    // The share of diffuse light the boundary keeps inside (lattice.cl).
+    const float r = float(latticeBoundaryReflectance(grid.ior));
     if (!blocked_) {
         out_ = zeroBuffer(cx, 6 * voxels_ * v4);
         collide_.setArg(0, f_);
@@ -61,6 +73,7 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
         stream_.setArg(3, escaped_);
         stream_.setArg(4, absorbed_);
         stream_.setArg(5, dims);
+        stream_.setArg(6, r);
         return;
     }
     // Blocks that hold any medium (or blocker) are launched; the rest are air.
@@ -99,6 +112,7 @@ Lattice::Lattice(const ClDevice& device, const cl::Program& program, const Voxel
     blocks_.setArg(11, float4Of(latticeAlbedo));
     blocks_.setArg(12, lambda);
     blocks_.setArg(13, cl_int(subSteps_));
+    blocks_.setArg(14, r);
 }
 
 void Lattice::enqueueLaunch(cl::CommandQueue& queue, std::vector<cl::Event>* after, cl::Event* done) {
@@ -190,6 +204,7 @@ ScatteringGrid Lattice::finish(cl::CommandQueue& queue) {
             g.extinction[3 * i + c] = grid_.material[i].a > 0.0f ? grid_.material[i][c] : 0.0f;
         }
     if (grid_.refracting) {
+        g.ior = grid_.ior;
         g.refraction.resize(4 * voxels_);
         for (size_t i = 0; i < voxels_; ++i)
             for (int c = 0; c < 4; ++c) g.refraction[4 * i + c] = grid_.refraction[i][c];

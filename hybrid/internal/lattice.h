@@ -18,6 +18,8 @@ struct LatticeTotals {
     Rgb inFlight{0.0}, absorbed{0.0}, escaped{0.0};
 };
 
+double latticeBoundaryReflectance(double ior);
+
 class Lattice {
 public:
     // subSteps: lattice steps per launch of the blocked lattice (ignored by the global one).

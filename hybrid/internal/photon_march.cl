@@ -13,6 +13,13 @@
 // also divides the velocity update by n; that breaks the invariant of the
 // continuous ray, |v|^2 - n^2 = const (d|v|^2/ds = 2 v.grad n = 2 n dn/ds), and
 // with it Snell's law across an interface (tests/hybrid: SnellAcrossSmoothedInterface).
+//
+// The smoothed index bends the ray but reflects nothing: where the ray first
+// crosses the middle of the index's ramp, it keeps Fresnel's transmission
+// 1 - R of its power, and the rest is tallied as escaped (reflected off the
+// object). The angle of incidence is the one outside: across a boundary the
+// component of v along it is conserved (|v| = n, Snell's n sin t = sin i), so
+// sin i = |v x nu| at any point of the ramp, nu the unit gradient of n.
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
 float4 refractionAt(global const float4* refraction, int4 dims, float3 g) {
@@ -30,6 +37,15 @@ float4 refractionAt(global const float4* refraction, int4 dims, float3 g) {
     return r;
 }
 
+// Fresnel reflectance for light from air (unpolarised), cosine cosI, relative index n (core/refraction.cpp).
+float fresnelFromAir(float cosI, float n) {
+    float eta = 1.0f / n;
+    float sin2T = eta * eta * (1.0f - cosI * cosI);
+    float cosT = sqrt(max(0.0f, 1.0f - sin2T));
+    float rs = (eta * cosI - cosT) / (eta * cosI + cosT), rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
 void addFixed(global ulong* at, float3 value, float3 unitsPerWatt) {
     if (value.x > 0.0f) atom_add(at + 0, convert_ulong_rte(value.x * unitsPerWatt.x));
     if (value.y > 0.0f) atom_add(at + 1, convert_ulong_rte(value.y * unitsPerWatt.y));
@@ -39,11 +55,12 @@ void addFixed(global ulong* at, float3 value, float3 unitsPerWatt) {
 // tallies: [0..2] absorbed, [3..5] escaped, fixed point like deposit; [6] rays still marching.
 kernel void march(global PhotonRay* rays, global const float4* material, global const float4* refraction,
                   global ulong* deposit, global ulong* tallies, int4 dims, float4 origin, float voxel,
-                  float step, int steps, float4 albedo, float4 unitsPerWatt, int refracting) {
+                  float step, int steps, float4 albedo, float4 unitsPerWatt, int refracting, float ior) {
     PhotonRay ray = rays[get_global_id(0)];
     if (ray.position.w == 0.0f) return;
     float3 x = ray.position.xyz, v = ray.velocity.xyz, power = ray.power.xyz;
-    float3 absorbed = (float3)(0.0f);
+    bool entered = ray.velocity.w != 0.0f;
+    float3 absorbed = (float3)(0.0f), reflected = (float3)(0.0f);
     bool alive = true;
     for (int s = 0; s < steps && alive; ++s) {
         float3 g = (x - origin.xyz) / voxel;
@@ -70,6 +87,13 @@ kernel void march(global PhotonRay* rays, global const float4* material, global 
             // The midpoint rule on eq. 4.1-4.2 (second order; the thesis' forward
             // Euler step bends 1.3% short of Snell's law at 50 degrees here).
             float4 r = refractionAt(refraction, dims, g);
+            if (!entered && r.x >= 0.5f * (1.0f + ior) && dot(r.yzw, r.yzw) > 0.0f) {
+                entered = true;
+                float sinI = length(cross(v, normalize(r.yzw)));
+                float3 kept = power * (1.0f - fresnelFromAir(sqrt(max(0.0f, 1.0f - sinI * sinI)), ior));
+                reflected += power - kept;
+                power = kept;
+            }
             float3 xm = x + 0.5f * step * v / r.x, vm = v + 0.5f * step * r.yzw;
             float4 rm = refractionAt(refraction, dims, (xm - origin.xyz) / voxel);
             x += step * vm / rm.x;
@@ -79,9 +103,10 @@ kernel void march(global PhotonRay* rays, global const float4* material, global 
         }
     }
     addFixed(tallies + 0, absorbed, unitsPerWatt.xyz);
+    addFixed(tallies + 3, reflected, unitsPerWatt.xyz);
     if (alive) atom_inc(tallies + 6);
     ray.position = (float4)(x, alive ? 1.0f : 0.0f);
-    ray.velocity = (float4)(v, 0.0f);
+    ray.velocity = (float4)(v, entered ? 1.0f : 0.0f);
     ray.power = (float4)(power, 0.0f);
     rays[get_global_id(0)] = ray;
 }

@@ -42,6 +42,7 @@ PhotonMarcher::PhotonMarcher(const ClDevice& device, const cl::Program& program,
     march_.setArg(10, float4Of(albedo));
     march_.setArg(11, float4Of(unitsPerWatt_));
     march_.setArg(12, cl_int(grid.refracting));
+    march_.setArg(13, float(grid.ior));
     Rgb wattsPerUnit(0.0);
     for (int c = 0; c < 3; ++c) wattsPerUnit[c] = unitsPerWatt_[c] > 0.0 ? 1.0 / unitsPerWatt_[c] : 0.0;
     transfer_.setArg(2, float4Of(wattsPerUnit));

@@ -13,7 +13,10 @@
 // dx/ds = v / n, dv/ds = grad n. Radiance over n^2 is what a ray carries
 // unchanged through a varying index (Veach 1997, 5.2), so the light scattered
 // at index n reaches the eye divided by n^2. The smoothed index reflects
-// nothing (no Fresnel), and the host's depth clips only the straight part.
+// nothing, so where the ray first crosses the middle of the index's ramp it
+// keeps Fresnel's transmission 1 - R(i) (hybrid/internal/photon_march.cl: the
+// angle outside from the conserved component, sin i = |v x nu|). The host's
+// depth clips only the straight part.
 #include "gpu_layout.h"
 
 uniform sampler2D raySegments;
@@ -26,12 +29,21 @@ uniform vec3 boundsMin, boundsMax;
 uniform float voxel;
 uniform bool refracting;
 uniform sampler3D refraction;  // x: n; yzw: grad n per world unit
+uniform float ior;             // the medium's own index, inside
 
 out vec4 colour;
 
 // The step's share of the source, dimmed from its start: T (1 - e^{-s dt}) / s -> T dt as s -> 0.
 vec3 stepWeight(vec3 sigmaT, vec3 stepT, float dt) {
     return mix(vec3(dt), (1.0 - stepT) / max(sigmaT, vec3(1e-30)), greaterThan(sigmaT * dt, vec3(1e-4)));
+}
+
+// Fresnel reflectance for light from air (unpolarised), cosine cosI, relative index n (core/refraction.cpp).
+float fresnelFromAir(float cosI, float n) {
+    float eta = 1.0 / n;
+    float cosT = sqrt(max(0.0, 1.0 - eta * eta * (1.0 - cosI * cosI)));
+    float rs = (eta * cosI - cosT) / (eta * cosI + cosT), rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+    return 0.5 * (rs * rs + rp * rp);
 }
 
 vec3 marchBent(vec3 x, vec3 dir) {
@@ -41,8 +53,14 @@ vec3 marchBent(vec3 x, vec3 dir) {
     // A ray crosses the box in fewer; more is one caught circling (total internal reflection).
     int steps = clamp(int(ceil(4.0 * length(boundsMax - boundsMin) / ds)), 1, 16384);
     vec3 transmittance = vec3(1.0), radiance = vec3(0.0);
+    bool entered = false;
     for (int i = 0; i < steps; ++i) {
         vec4 r = texture(refraction, (x - boundsMin) * scale);
+        if (!entered && r.x >= 0.5 * (1.0 + ior) && dot(r.yzw, r.yzw) > 0.0) {
+            entered = true;
+            float sinI = length(cross(v, normalize(r.yzw)));
+            transmittance *= 1.0 - fresnelFromAir(sqrt(max(0.0, 1.0 - sinI * sinI)), ior);
+        }
         vec3 xm = x + 0.5 * ds * v / r.x, vm = v + 0.5 * ds * r.yzw;
         vec3 p = (xm - boundsMin) * scale;
         if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) break;

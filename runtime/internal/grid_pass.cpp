@@ -55,6 +55,7 @@ void GridPass::add(const ScatteringGrid& grid) {
     g.source = texture3d(grid, grid.source);
     g.extinction = texture3d(grid, grid.extinction);
     if (!grid.refraction.empty()) g.refraction = texture3d(grid, grid.refraction, true);
+    g.ior = float(grid.ior);
     g.bounds = grid.bounds;
     g.voxel = float(grid.bounds.extent().x / grid.dims[0]);
     grids_.push_back(g);
@@ -84,6 +85,7 @@ void GridPass::draw(FrameContext& frame) {
         glBindTextureUnit(gpu::kUnitGridExtinction, g.extinction);
         glBindTextureUnit(gpu::kUnitGridRefraction, g.refraction);
         glUniform1i(program.uniform("refracting"), g.refraction != 0);
+        glUniform1f(program.uniform("ior"), g.ior);
         glUniform3fv(program.uniform("boundsMin"), 1, glm::value_ptr(glm::vec3(g.bounds.min)));
         glUniform3fv(program.uniform("boundsMax"), 1, glm::value_ptr(glm::vec3(g.bounds.max)));
         glUniform1f(program.uniform("voxel"), g.voxel);

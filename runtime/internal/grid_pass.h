@@ -29,6 +29,7 @@ private:
         GLuint refraction = 0;              // RGBA32F (n, grad n), or 0: index-matched
         Bounds3 bounds;
         float voxel = 0;
+        float ior = 1;  // the medium's own, where refraction is not 0
     };
     std::vector<GpuGrid> grids_;
     // Linked on first use: only scenes with grids (the hybrid methods) draw this pass.

@@ -101,8 +101,10 @@ TEST(Eikonal, FollowsTheAnalyticRayInALinearIndexGradient) {
     EXPECT_NEAR(end.velocity.s[0], v0.x, 1e-5);
 }
 
-TEST(Eikonal, SnellAcrossSmoothedInterface) {
+TEST(Eikonal, SnellAndFresnelAcrossSmoothedInterface) {
     // n = 1 below y = 0.5, 1.5 above, blurred over 0.75 voxel as voxelise does.
+    // The ray bends by Snell's law and keeps Fresnel's transmission of its power,
+    // here in the angle form (Born and Wolf, Principles of Optics, 1.5.3).
     const int side = 64;
     Voxelisation grid = slabGrid({side, side, 8}, 1.0 / side, Rgb(0.0));
     std::vector<float> field(grid.shape.count());
@@ -112,12 +114,16 @@ TEST(Eikonal, SnellAcrossSmoothedInterface) {
     std::vector<float> row(side);
     for (int y = 0; y < side; ++y) row[y] = field[side / 2 + d[0] * (y + size_t(d[1]) * 4)];
     setIndex(grid, row);
-    for (double degrees : {10.0, 30.0, 50.0}) {
-        const double t = degrees * kPi / 180.0;
+    grid.ior = 1.5;
+    for (double degrees : {10.0, 30.0, 50.0, 60.0}) {
+        const double t = degrees * kPi / 180.0, refracted = std::asin(std::sin(t) / 1.5);
         const PhotonRay end =
             marchOne(grid, rayAt(Vec3(0.05, 0.05, 0.05), Vec3(std::sin(t), std::cos(t), 0.0)), 0.5 / side);
         const double sinOut = end.velocity.s[0] / std::hypot(end.velocity.s[0], end.velocity.s[1]);
         EXPECT_NEAR(sinOut, std::sin(t) / 1.5, 0.01 * std::sin(t) / 1.5) << degrees << " degrees";
+        const double rs = std::sin(t - refracted) / std::sin(t + refracted);
+        const double rp = std::tan(t - refracted) / std::tan(t + refracted);
+        EXPECT_NEAR(end.power.s[0], 1.0 - 0.5 * (rs * rs + rp * rp), 2e-3) << degrees << " degrees";
     }
 }
 
@@ -217,24 +223,59 @@ TEST(Lattice, PointSourceSpreadsAsThePersistentWalkOfItsCollisionMatrix) {
     EXPECT_NEAR(slope / 6.0, (2.0 / k - 1.0) / 6.0, 0.01 * (2.0 / k - 1.0) / 6.0);
 }
 
+TEST(Lattice, RefractingBoundaryReturnsItsShareAsAGeometricSeries) {
+    // One voxel of medium alone in the air, at index 1.5: each step, what the
+    // voxel sends out comes back reflected with share r and 1 - r leaves, so
+    // of a source S, with q = 1 - (1 - a) k the share a collision keeps,
+    //   escaped = (1 - r) S (1 + r q + (r q)^2 + ...) = (1 - r) S / (1 - r q).
+    // r itself: the lattice's partial-current condition f- = r f+ puts the
+    // extrapolated boundary at 3 D (1 + r) / (1 - r) where diffusion's puts it
+    // at 2 D (1 + R) / (1 - R), R = 0.596325 at n = 1.5 (Walsh's closed form for
+    // the diffuse reflectance from outside, 0.0917780, turned inside by
+    // reciprocity, 1 - (1 - 0.0917780) / 1.5^2; tests/reference/refraction_test).
+    const double R = 1.0 - (1.0 - 0.0917780) / 2.25;
+    const double aLattice = 2.0 / 3.0 * (1.0 + R) / (1.0 - R), r = (aLattice - 1.0) / (aLattice + 1.0);
+    EXPECT_NEAR(latticeBoundaryReflectance(1.5), r, 1e-6);
+    EXPECT_EQ(latticeBoundaryReflectance(1.0), 0.0);
+    const double k = 0.4, albedo = 0.8, q = 1.0 - (1.0 - albedo) * k;
+    for (int at : {1, 4}) {  // inside a block, and on a block's face (its -x neighbour in the next block)
+        Voxelisation grid = slabGrid({8, 8, 8}, 1.0, Rgb(0.0));
+        grid.material.assign(grid.shape.count(), glm::vec4(0.0f));
+        const size_t voxel = at + 8 * (at + 8 * size_t(at));
+        grid.material[voxel] = glm::vec4(glm::vec3(float(-std::log(1.0 - k))), 1.0f);
+        grid.ior = 1.5;
+        for (bool blocked : {false, true}) {
+            Lattice lattice(device(), program(), grid, Rgb(albedo), blocked, 3);
+            inject(lattice, voxel, 1.0f);
+            for (int i = 0; i < 60; ++i) lattice.enqueueLaunch(device().latticeQueue);
+            const LatticeTotals t = lattice.totals(device().latticeQueue);
+            EXPECT_NEAR(t.escaped.r, (1.0 - r) / (1.0 - r * q), 1e-5) << at << " blocked " << blocked;
+            EXPECT_NEAR(t.escaped.r + t.absorbed.r + t.inFlight.r, 1.0, 1e-5) << at << " blocked " << blocked;
+        }
+    }
+}
+
 TEST(Lattice, BlockedMatchesGlobalLatticeOnceConverged) {
     std::vector<std::string> warnings;
     const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 6.0, 0.9), warnings);
-    const Voxelisation grid = voxelise(sphere, 20);
-    std::vector<std::vector<glm::vec4>> tallies;
-    for (bool blocked : {false, true}) {
-        Lattice lattice(device(), program(), grid, Rgb(0.9), blocked, 4);
-        const auto& d = grid.shape.dims;
-        inject(lattice, d[0] / 2 + d[0] * (d[1] / 3 + size_t(d[1]) * (d[2] / 2)), 1.0f);
-        for (int i = 0; i < (blocked ? 150 : 600); ++i) lattice.enqueueLaunch(device().latticeQueue);
-        EXPECT_LT(lattice.totals(device().latticeQueue).inFlight.r, 1e-6);
-        tallies.push_back(lattice.fluenceTally(device().latticeQueue));
+    Voxelisation grid = voxelise(sphere, 20);
+    for (double ior : {1.0, 1.5}) {  // the boundary reflects across blocks as within one
+        grid.ior = ior;
+        std::vector<std::vector<glm::vec4>> tallies;
+        for (bool blocked : {false, true}) {
+            Lattice lattice(device(), program(), grid, Rgb(0.9), blocked, 4);
+            const auto& d = grid.shape.dims;
+            inject(lattice, d[0] / 2 + d[0] * (d[1] / 3 + size_t(d[1]) * (d[2] / 2)), 1.0f);
+            for (int i = 0; i < (blocked ? 150 : 600); ++i) lattice.enqueueLaunch(device().latticeQueue);
+            EXPECT_LT(lattice.totals(device().latticeQueue).inFlight.r, 1e-6);
+            tallies.push_back(lattice.fluenceTally(device().latticeQueue));
+        }
+        double largest = 0;
+        for (const glm::vec4& v : tallies[0]) largest = std::max(largest, double(v.r));
+        ASSERT_GT(largest, 0.0);
+        for (size_t i = 0; i < tallies[0].size(); ++i)
+            ASSERT_NEAR(tallies[1][i].r, tallies[0][i].r, 1e-4 * largest) << "voxel " << i << " ior " << ior;
     }
-    double largest = 0;
-    for (const glm::vec4& v : tallies[0]) largest = std::max(largest, double(v.r));
-    ASSERT_GT(largest, 0.0);
-    for (size_t i = 0; i < tallies[0].size(); ++i)
-        ASSERT_NEAR(tallies[1][i].r, tallies[0][i].r, 1e-4 * largest) << "voxel " << i;
 }
 
 TEST(MultipleScattering, ProbesStopTheLatticeWithinItsTolerance) {

@@ -11,7 +11,8 @@
 //   the boundary, integrated over the volume;
 // - the single scattering of a half-space under a beam, seen from outside: a
 //   closed form with Snell's angles, both Fresnel transmissions and the n^2 law
-//   of radiance.
+//   of radiance;
+// - the hemispherical reflectance to diffuse light, in Walsh's closed form.
 #include "core/refraction.h"
 
 #include <gtest/gtest.h>
@@ -51,6 +52,28 @@ TEST(Refraction, FresnelReflectanceIsTheAngleFormBothWays) {
         // Past the critical angle from inside: total reflection.
         EXPECT_EQ(fresnelReflectance(std::cos(std::asin(1.0 / n) + 1e-6), n), 1.0);
     }
+}
+
+// The hemispherical reflectance of a smooth boundary to diffuse light from
+// outside, in closed form (Walsh 1926; as quoted by Judd, J. Res. NBS 29, 1942,
+// eq. 7), n the relative index > 1.
+double diffuseExternalReflectance(double n) {
+    const double n2 = n * n, n4 = n2 * n2;
+    return 0.5 + (n - 1.0) * (3.0 * n + 1.0) / (6.0 * (n + 1.0) * (n + 1.0)) +
+           n2 * (n2 - 1.0) * (n2 - 1.0) / std::pow(n2 + 1.0, 3) * std::log((n - 1.0) / (n + 1.0)) -
+           2.0 * n2 * n * (n2 + 2.0 * n - 1.0) / ((n2 + 1.0) * (n4 - 1.0)) +
+           8.0 * n4 * (n4 + 1.0) / ((n2 + 1.0) * (n4 - 1.0) * (n4 - 1.0)) * std::log(n);
+}
+
+TEST(Refraction, DiffuseFresnelReflectanceIsWalshsFormAndReciprocal) {
+    for (double n : {1.05, 1.33, 1.5, 1.7, 2.4}) {
+        const double external = diffuseExternalReflectance(n);
+        EXPECT_NEAR(diffuseFresnelReflectance(1.0 / n), external, 1e-9) << n;
+        // Inside, by reciprocity: what the outside does not reflect comes out
+        // compressed into the cone within the critical angle, 1 / n^2 of it.
+        EXPECT_NEAR(diffuseFresnelReflectance(n), 1.0 - (1.0 - external) / (n * n), 1e-9) << n;
+    }
+    EXPECT_NEAR(diffuseFresnelReflectance(1.0), 0.0, 1e-12);
 }
 
 TEST(Refraction, RefractedDirectionsObeySnellInThePlaneOfIncidence) {
