@@ -1,8 +1,13 @@
 #include "hybrid/mdom_scattering.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/refraction.h"
 #include "core/spherical_harmonics.h"
 #include "core/stopwatch.h"
 #include "hybrid/internal/cl_device.h"
@@ -36,6 +41,12 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     const int m = bands * bands;
     g.source.assign(3 * voxels, 0.0f);
     g.extinction.resize(3 * voxels);
+    g.ior = ior;
+    if (!refraction.empty()) {
+        g.refraction.resize(4 * voxels);
+        for (size_t v = 0; v < voxels; ++v)
+            for (int c = 0; c < 4; ++c) g.refraction[4 * v + c] = refraction[v][c];
+    }
     const Vec3 voxel = bounds.extent() / Vec3(dims[0], dims[1], dims[2]);
     std::vector<double> y(m), gl(m);
     for (int i = 0; i < m; ++i) gl[i] = std::pow(this->g, int(std::sqrt(double(i))));
@@ -50,7 +61,7 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
                 const Vec3 centre = bounds.min + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5);
                 Rgb peak(0.0);
                 for (const Peak& p : peaks) {
-                    const Vec3 w = p.light.type == Light::Type::Point ? centre - p.light.position : p.light.direction;
+                    const Vec3 w = p.travelAt(v, centre);
                     if (!(glm::length(w) > 0.0) || !(glm::length(toEye) > 0.0)) continue;
                     const double phase = henyeyGreenstein(glm::dot(glm::normalize(w), glm::normalize(toEye)), this->g);
                     peak += phase * Rgb(p.excess[v].r, p.excess[v].g, p.excess[v].b);
@@ -143,6 +154,15 @@ MdomMaterials materialsOf(const Voxelisation& vox, const MediumDesc& medium, con
     grid.extinction.assign(voxels, glm::vec4(0.0f));
     grid.scattering.assign(voxels, glm::vec4(0.0f));
     grid.phase.assign(voxels, glm::vec4(float(medium.g), 0.0f, 0.0f, 0.0f));
+    grid.ior = medium.ior;
+    if (vox.refracting) {
+        // The outward normal: down the smoothed index's gradient.
+        grid.boundaryNormal.resize(voxels);
+        for (size_t v = 0; v < voxels; ++v) {
+            const glm::vec3 g(vox.refraction[v].y, vox.refraction[v].z, vox.refraction[v].w);
+            grid.boundaryNormal[v] = glm::length(g) > 0.0f ? -glm::normalize(g) : glm::vec3(0.0f);
+        }
+    }
     out.trueExtinction.assign(voxels, glm::vec4(0.0f));
     out.opaque.assign(voxels, 0);
     for (size_t v = 0; v < voxels; ++v) {
@@ -166,65 +186,133 @@ MdomMaterials materialsOf(const Voxelisation& vox, const MediumDesc& medium, con
 }
 
 // The direct component, light by light (thesis 5.3.1): each light's uncollided
-// irradiance through the scaled and the true medium (dom_direct.cl), giving the
-// first source Q_lm = sigma_s* g*_l E* Y_lm(omega_light) and the forward peak
-// (E* - E), which the sweeps cannot carry and the view adds back.
+// irradiance through the scaled and the true medium, giving the first source
+// Q_lm = sigma_s* g*_l E* Y_lm(omega_light) and the forward peak (E* - E),
+// which the sweeps cannot carry and the view adds back.
 struct DirectComponent {
     std::vector<glm::vec4> source;  // [voxel][moment]
     std::vector<MdomSolution::Peak> peaks;
 };
 
-DirectComponent directComponent(ClDevice& device, const cl::Program& program, const GridShape& shape,
-                                const MdomMaterials& materials, const std::vector<Light>& lights, const DeltaM& dm,
-                                int bands) {
+// One light's irradiance per voxel, through the scaled and the true extinction.
+struct LightArrival {
+    std::vector<glm::vec4> scaled, unscaled;
+    std::vector<glm::vec3> travel;  // the direction the light travels at each voxel (empty: from the light)
+};
+
+// Straight from the light, marched on the device (dom_direct.cl).
+class StraightArrivals {
+public:
+    StraightArrivals(ClDevice& device, const cl::Program& program, const GridShape& shape,
+                     const MdomMaterials& materials)
+        : queue_(device.marchQueue), voxels_(shape.count()), kernel_(program, "dom_uncollided") {
+        const cl::Context& cx = device.context;
+        // CL_MEM_COPY_HOST_PTR copies from the host pointer and never writes it.
+        scaled_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * sizeof(glm::vec4),
+                             const_cast<glm::vec4*>(materials.grid.extinction.data()));
+        true_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * sizeof(glm::vec4),
+                           const_cast<glm::vec4*>(materials.trueExtinction.data()));
+        opaque_ = cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels_ * sizeof(cl_int),
+                             const_cast<cl_int*>(materials.opaque.data()));
+        scaledOut_ = cl::Buffer(cx, CL_MEM_WRITE_ONLY, voxels_ * sizeof(glm::vec4));
+        trueOut_ = cl::Buffer(cx, CL_MEM_WRITE_ONLY, voxels_ * sizeof(glm::vec4));
+        kernel_.setArg(0, scaled_);
+        kernel_.setArg(1, true_);
+        kernel_.setArg(2, opaque_);
+        kernel_.setArg(3, scaledOut_);
+        kernel_.setArg(4, trueOut_);
+        kernel_.setArg(7, float4Of(shape.origin, 0.0));
+        kernel_.setArg(8, float(shape.voxel));
+        kernel_.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
+    }
+
+    LightArrival of(const Light& light) {
+        const bool point = light.type == Light::Type::Point;
+        kernel_.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
+        kernel_.setArg(6, float4Of(light.power, 0.0));
+        queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(voxels_));
+        LightArrival a{std::vector<glm::vec4>(voxels_), std::vector<glm::vec4>(voxels_), {}};
+        queue_.enqueueReadBuffer(scaledOut_, CL_TRUE, 0, voxels_ * sizeof(glm::vec4), a.scaled.data());
+        queue_.enqueueReadBuffer(trueOut_, CL_TRUE, 0, voxels_ * sizeof(glm::vec4), a.unscaled.data());
+        return a;
+    }
+
+private:
+    cl::CommandQueue& queue_;
+    size_t voxels_;
+    cl::Kernel kernel_;
+    cl::Buffer scaled_, true_, opaque_, scaledOut_, trueOut_;
+};
+
+// Through a refracting boundary, on the CPU: per voxel the light's way found
+// by the Newton solve the ground truths and ss use (core/refraction.h), its
+// Fresnel transmission and the bundle's focusing, then marched inside along it.
+LightArrival refractedArrival(const VolumeObject& object, const GridShape& shape, const MdomMaterials& materials,
+                              const Light& light) {
+    const size_t voxels = shape.count();
+    LightArrival a{std::vector<glm::vec4>(voxels, glm::vec4(0.0f)), std::vector<glm::vec4>(voxels, glm::vec4(0.0f)),
+                   std::vector<glm::vec3>(voxels, glm::vec3(0.0f))};
+    const GridIndex index = shape.index();
+    object.boundary();  // built once here, not raced for by the voxels
+    tbb::parallel_for(0, shape.dims[2], [&](int k) {
+        for (int j = 0; j < shape.dims[1]; ++j)
+            for (int i = 0; i < shape.dims[0]; ++i) {
+                const size_t v = index(i, j, k);
+                if (materials.trueExtinction[v] == glm::vec4(0.0f) || materials.opaque[v]) continue;
+                const Vec3 x = shape.centre(i, j, k);
+                const std::optional<RefractedArrival> arrival = lightThroughBoundary(object, light, x);
+                if (!arrival) continue;
+                const int steps = std::max(1, int(std::ceil(arrival->inside / (0.5 * shape.voxel))));
+                const double dt = arrival->inside / steps;
+                glm::dvec3 tauScaled(0.0), tauTrue(0.0);
+                bool blocked = false;
+                for (int s = 0; s < steps && !blocked; ++s) {
+                    const Vec3 q = (x + (s + 0.5) * dt * arrival->toLight - shape.origin) / shape.voxel;
+                    const std::array<int, 3> c{std::clamp(int(std::floor(q.x)), 0, shape.dims[0] - 1),
+                                               std::clamp(int(std::floor(q.y)), 0, shape.dims[1] - 1),
+                                               std::clamp(int(std::floor(q.z)), 0, shape.dims[2] - 1)};
+                    const size_t at = index(c);
+                    blocked = materials.opaque[at] != 0;
+                    tauScaled += glm::dvec3(glm::vec3(materials.grid.extinction[at])) * dt;
+                    tauTrue += glm::dvec3(glm::vec3(materials.trueExtinction[at])) * dt;
+                }
+                if (blocked) continue;
+                const glm::dvec3 e(arrival->irradiance);
+                a.scaled[v] = glm::vec4(glm::vec3(e * glm::exp(-tauScaled)), 0.0f);
+                a.unscaled[v] = glm::vec4(glm::vec3(e * glm::exp(-tauTrue)), 0.0f);
+                a.travel[v] = glm::vec3(-arrival->toLight);
+            }
+    });
+    return a;
+}
+
+DirectComponent directComponent(ClDevice& device, const cl::Program& program, const VolumeObject& object,
+                                const GridShape& shape, const MdomMaterials& materials,
+                                const std::vector<Light>& lights, const DeltaM& dm, int bands) {
     const size_t voxels = shape.count();
     const int moments = bands * bands;
-    cl::CommandQueue& queue = device.marchQueue;
-    const cl::Context& cx = device.context;
+    const bool refracting = object.desc().medium.ior != 1.0;
     DirectComponent out{std::vector<glm::vec4>(voxels * moments, glm::vec4(0.0f)), {}};
-    // CL_MEM_COPY_HOST_PTR copies from the host pointer and never writes it.
-    cl::Buffer scaledBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
-                         const_cast<glm::vec4*>(materials.grid.extinction.data()));
-    cl::Buffer trueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(glm::vec4),
-                       const_cast<glm::vec4*>(materials.trueExtinction.data()));
-    cl::Buffer opaqueBuf(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, voxels * sizeof(cl_int),
-                         const_cast<cl_int*>(materials.opaque.data()));
-    cl::Buffer scaledOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
-    cl::Buffer trueOut(cx, CL_MEM_WRITE_ONLY, voxels * sizeof(glm::vec4));
-    cl::Kernel k(program, "dom_uncollided");
-    k.setArg(0, scaledBuf);
-    k.setArg(1, trueBuf);
-    k.setArg(2, opaqueBuf);
-    k.setArg(3, scaledOut);
-    k.setArg(4, trueOut);
-    k.setArg(7, float4Of(shape.origin, 0.0));
-    k.setArg(8, float(shape.voxel));
-    k.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
-    std::vector<glm::vec4> eScaled(voxels), eTrue(voxels);
+    std::optional<StraightArrivals> straight;
+    if (!refracting) straight.emplace(device, program, shape, materials);
     std::vector<double> y(moments);
     const std::vector<glm::vec4>& scattering = materials.grid.scattering;
     for (const Light& light : lights) {
-        const bool point = light.type == Light::Type::Point;
-        k.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
-        k.setArg(6, float4Of(light.power, 0.0));
-        queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(voxels));
-        queue.enqueueReadBuffer(scaledOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eScaled.data());
-        queue.enqueueReadBuffer(trueOut, CL_TRUE, 0, voxels * sizeof(glm::vec4), eTrue.data());
-        MdomSolution::Peak peak{light, std::vector<glm::vec4>(voxels)};
-        for (size_t v = 0; v < voxels; ++v) peak.excess[v] = glm::max(eScaled[v] - eTrue[v], glm::vec4(0.0f));
+        const LightArrival a = refracting ? refractedArrival(object, shape, materials, light) : straight->of(light);
+        MdomSolution::Peak peak{light, std::vector<glm::vec4>(voxels), a.travel};
+        for (size_t v = 0; v < voxels; ++v) peak.excess[v] = glm::max(a.scaled[v] - a.unscaled[v], glm::vec4(0.0f));
         out.peaks.push_back(std::move(peak));
         for (int kz = 0; kz < shape.dims[2]; ++kz)
             for (int ky = 0; ky < shape.dims[1]; ++ky)
                 for (int kx = 0; kx < shape.dims[0]; ++kx) {
                     const size_t v = shape.index()(kx, ky, kz);
-                    if (eScaled[v] == glm::vec4(0.0f) && eTrue[v] == glm::vec4(0.0f)) continue;
-                    const Vec3 centre = shape.centre(kx, ky, kz);
-                    Vec3 w = point ? centre - light.position : light.direction;
+                    if (a.scaled[v] == glm::vec4(0.0f) && a.unscaled[v] == glm::vec4(0.0f)) continue;
+                    const Vec3 w = out.peaks.back().travelAt(v, shape.centre(kx, ky, kz));
                     if (glm::length(w) <= 0.0) continue;
                     evaluateSh(bands, glm::normalize(w), y);
                     for (int m = 0; m < moments; ++m) {
                         const int l = int(std::sqrt(double(m)));
-                        out.source[v * moments + m] += scattering[v] * eScaled[v] * float(dm.moments[l] * y[m]);
+                        out.source[v * moments + m] += scattering[v] * a.scaled[v] * float(dm.moments[l] * y[m]);
                     }
                 }
     }
@@ -256,7 +344,8 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     const DeltaM dm = deltaM(medium.g, s.bands);
     MdomMaterials materials = materialsOf(vox, medium, dm);
     try {
-        DirectComponent direct = directComponent(device, impl_->direct, shape, materials, lights, dm, s.bands);
+        DirectComponent direct =
+            directComponent(device, impl_->direct, object, shape, materials, lights, dm, s.bands);
         stats.directSeconds = stopwatch.seconds();
         auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
         MdomSolution& solution = progress->solution;
@@ -271,6 +360,10 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
                                          ? glm::vec4(0.0f)
                                          : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
         solution.peaks = std::move(direct.peaks);
+        if (vox.refracting) {
+            solution.refraction = vox.refraction;
+            solution.ior = vox.ior;
+        }
         progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{});
         progress->solver->setSource(device.marchQueue, direct.source);
         return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));

@@ -49,9 +49,23 @@ struct MdomSolution {
     struct Peak {
         Light light;
         std::vector<glm::vec4> excess;  // E* - E per voxel, rgb
+        // Per voxel, the direction the light travels there, refracted by the
+        // boundary; empty when it comes straight from the light.
+        std::vector<glm::vec3> travel;
+        Vec3 travelAt(size_t voxel, const Vec3& centre) const {
+            if (!travel.empty()) return Vec3(travel[voxel]);
+            return light.type == Light::Type::Point ? centre - light.position : light.direction;
+        }
     };
     std::vector<Peak> peaks;
+    // Where the medium refracts: the smoothed index and its gradient per voxel
+    // (Voxelisation::refraction), along which the view bends; else empty.
+    std::vector<glm::vec4> refraction;
+    double ior = 1.0;
 
+    // The view pass's grid for a pinhole camera at eye. The light scattered
+    // towards the eye is evaluated for the straight direction to it, also
+    // where the view bends.
     ScatteringGrid towards(const Vec3& eye) const;
 };
 

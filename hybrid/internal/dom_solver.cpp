@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/refraction.h"
 #include "core/spherical_harmonics.h"
 
 namespace lucent::hybrid {
@@ -28,6 +29,27 @@ size_t DomSolver::faceOffset(int face, const std::array<int, 3>& d, int directio
     size_t off = 0;  // face 6: the end of the last face, the size of them all
     for (int f = 0; f < face; ++f) off += cells[f / 2];
     return off * directions;
+}
+
+std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
+    const GridIndex index = grid.index();
+    const auto& d = grid.dims;
+    std::vector<cl_int> faces(3 * index.count(), -1);
+    auto wanted = [&](size_t v) { return grid.extinction[v].a != 0.0f; };
+    auto air = [&](size_t v) { return glm::vec3(grid.extinction[v]) == glm::vec3(0.0f); };
+    *count = 0;
+    for (int k = 0; k < d[2]; ++k)
+        for (int j = 0; j < d[1]; ++j)
+            for (int i = 0; i < d[0]; ++i) {
+                const size_t v = index(i, j, k);
+                const int c[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    if (c[a] + 1 >= d[a]) continue;
+                    const size_t u = index(i + (a == 0), j + (a == 1), k + (a == 2));
+                    if ((wanted(v) && air(u)) || (air(v) && wanted(u))) faces[3 * v + a] = (*count)++;
+                }
+            }
+    return faces;
 }
 
 size_t DomSolver::largestBufferFor(size_t voxels, int bands) { return voxels * bands * bands * sizeof(glm::vec4); }
@@ -94,6 +116,37 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     zFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[1] * k * sizeof(glm::vec4));
     for (cl::Buffer& b : boundary_) b = zeroBuffer(cx, faceOffset(6, dm, n) * sizeof(glm::vec4));
     partial_ = zeroBuffer(cx, kPartials * sizeof(glm::vec4));
+    // The inner boundary: per face, Fresnel's reflectance of each direction
+    // leaving the medium by it, at its angle to the boundary's normal there (a
+    // direction the staircase lets out but the boundary would not: kept inside).
+    int faces = 0;
+    std::vector<cl_int> innerFace = grid.ior != 1.0 ? innerFaces(grid, &faces) : std::vector<cl_int>{-1};
+    mirrors_ = faces > 0;
+    const size_t mirrorBytes = size_t(faces) * n * sizeof(glm::vec4);
+    if (mirrors_)
+        device.checkMemory(2 * mirrorBytes + mirrorBytes / 4, mirrorBytes,
+                           "the inner boundary's reflections (" + std::to_string(faces) + " voxel faces)");
+    std::vector<float> fresnel(std::max<size_t>(1, size_t(faces) * n));
+    if (mirrors_) {
+        if (grid.boundaryNormal.size() != grid.count()) throw Error("internal: discrete ordinates without normals");
+        const GridIndex index = grid.index();
+        for (size_t v = 0; v < grid.count(); ++v)
+            for (int a = 0; a < 3; ++a) {
+                const int f = innerFace[3 * v + a];
+                if (f < 0) continue;
+                const std::array<int, 3> c = index.cell(v);
+                const size_t u = index(c[0] + (a == 0), c[1] + (a == 1), c[2] + (a == 2));
+                const Vec3 sum = Vec3(grid.boundaryNormal[v] + grid.boundaryNormal[u]);
+                const Vec3 normal = glm::length(sum) > 0.0 ? glm::normalize(sum) : Vec3(0.0);
+                for (int i = 0; i < n; ++i) {
+                    const double cosine = glm::dot(ordinates_.directions[i], normal);
+                    fresnel[size_t(f) * n + i] = cosine > 0.0 ? float(fresnelReflectance(cosine, grid.ior)) : 1.0f;
+                }
+            }
+    }
+    innerFace_ = constBuffer(cx, innerFace);
+    fresnel_ = constBuffer(cx, fresnel);
+    for (cl::Buffer& b : mirror_) b = zeroBuffer(cx, std::max<size_t>(1, size_t(faces) * n) * sizeof(glm::vec4));
 
     sweep_.setArg(0, extinction_);
     sweep_.setArg(1, source_);
@@ -105,6 +158,9 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     sweep_.setArg(10, int4Of(dm));
     sweep_.setArg(11, float(std::max({grid.edges.x, grid.edges.y, grid.edges.z})));
     sweep_.setArg(13, cl_int(reflectiveMask_));
+    sweep_.setArg(16, innerFace_);
+    sweep_.setArg(19, fresnel_);
+    sweep_.setArg(20, cl_int(mirrors_));
     scatter_.setArg(2, source_);
     scatter_.setArg(3, scattering_);
     scatter_.setArg(4, phase_);
@@ -140,6 +196,8 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     sweep_.setArg(2, flux_);
     sweep_.setArg(5, boundary_[swaps_ % 2]);
     sweep_.setArg(6, boundary_[(swaps_ + 1) % 2]);
+    sweep_.setArg(17, mirror_[swaps_ % 2]);
+    sweep_.setArg(18, mirror_[(swaps_ + 1) % 2]);
     for (int octant = 0; octant < 8; ++octant) {
         sweep_.setArg(12, cl_int(octant));
         for (int diagonal = 0; diagonal <= d[1] + d[2] - 2; ++diagonal) {

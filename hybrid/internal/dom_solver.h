@@ -25,6 +25,12 @@ struct DomGrid {
                                         // (a voxel with a = 0 must have no source)
     std::vector<glm::vec4> scattering;  // sigma_s*, rgb
     std::vector<glm::vec4> phase;       // x: Henyey-Greenstein g (truncated by delta-M to the bands stored)
+    // The medium's refractive index: other than 1, the faces between a voxel
+    // whose flux is wanted and one of air (extinction 0) reflect inside by
+    // Fresnel, at the angle to the boundary's outward unit normal there
+    // (per voxel, the mean of the face's two voxels is taken).
+    double ior = 1.0;
+    std::vector<glm::vec3> boundaryNormal;
     size_t count() const { return index().count(); }
     GridIndex index() const { return {dims}; }
 };
@@ -45,6 +51,9 @@ public:
     // Device memory for a grid of `voxels` and the largest single buffer.
     static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands);
     static size_t largestBufferFor(size_t voxels, int bands);
+    // The faces of the inner boundary: [voxel][3], each voxel's face to +axis
+    // numbered where one side's flux is wanted and the other is air, else -1.
+    static std::vector<cl_int> innerFaces(const DomGrid& grid, int* count);
 
     // The first generation's radiance source, [voxel][M] moments (rgb) per unit length.
     void setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source);
@@ -102,6 +111,9 @@ private:
     cl::Kernel sweep_, scatter_, power_;
     cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2], ylm_,
         weights_, crossing_, partial_;
+    // The object's inner boundary (dom_sweep.cl): each voxel's face to +axis, and what it reflected.
+    cl::Buffer innerFace_, mirror_[2], fresnel_;  // fresnel_: [face][N], R of each direction leaving by it
+    bool mirrors_ = false;
 };
 
 }  // namespace lucent::hybrid

@@ -42,6 +42,16 @@ inline int faceOffset(int f, int4 d) {
 //   L_V = sum tube[In][Out] s (phi1(sigma s) L_In + s psi(sigma s) S),
 // or, where the voxel is optically thicker than 0.1, from the balance itself:
 //   sigma L_V = S + sum_In tube_In L_In - sum_Out tube_Out L_Out.
+//
+// The object's own boundary, where it refracts (index n != 1), reflects inside
+// with Fresnel's share (and all of it past the critical angle): on a face
+// between a voxel with medium and one of air (innerFace >= 0), the radiance
+// leaving the medium along direction n keeps 1 - R going out, R at the angle
+// between omega_n and the boundary's own normal there (the host's table), and
+// R is stored (mirrorOut); the next iteration's sweep of the mirrored
+// direction (one octant bit flipped, as at the box's reflecting faces) takes
+// it back in on that face (mirrorIn). The staircase of faces reflects in its
+// axes: the share is the boundary's, the direction the staircase's.
 kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w: 0 where no flux is wanted
                       global const float4* source,      // [voxel][DOM_M]
                       global float4* flux,              // [voxel][DOM_M], accumulated
@@ -52,7 +62,13 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
                       constant float* ylm,              // [N][DOM_M]
                       constant float* weights,          // [N]
                       constant float* crossing,         // [DOM_K][27]: share[9], tube[9], length[9] (In * 3 + Out)
-                      int4 dims, float maxEdge, int octant, int reflective, int diagonal, int kFirst) {
+                      int4 dims, float maxEdge, int octant, int reflective, int diagonal, int kFirst,
+                      global const int* innerFace,      // [voxel][3]: the face to +axis, its index, or -1
+                      global const float4* mirrorIn,    // [face][N]: reflected inside, the previous iteration
+                      global float4* mirrorOut,         // [face][N]
+                      global const float* fresnel,      // [face][N]: R of each direction leaving by the face
+                      int mirrors) {                    // any inner faces at all
+    const int N = 8 * DOM_K;
     const int k = kFirst + (int)get_global_id(0), j = diagonal - k;
     const int nx = dims.x, ny = dims.y, nz = dims.z;
     const int sx = octant & 1, sy = (octant >> 1) & 1, sz = (octant >> 2) & 1;
@@ -78,6 +94,19 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
         // so in w) neither read a source nor write moments: half the memory
         // traffic in a mesh's box is air.
         const bool active = sigma.w != 0.0f;
+        // The inner faces this voxel enters by and leaves through, per axis (-1: none).
+        int faceIn[3] = {-1, -1, -1}, faceOut[3] = {-1, -1, -1};
+        if (mirrors && active) {
+            const int c[3] = {ir, jr, kr}, flip[3] = {sx, sy, sz};
+            const size_t stride[3] = {1, (size_t)nx, (size_t)nx * ny};
+            for (int a = 0; a < 3; ++a) {
+                // The face to +axis belongs to this voxel; the one to -axis to the voxel below.
+                const int up = innerFace[v * 3 + a];
+                const int down = c[a] > 0 ? innerFace[(v - stride[a]) * 3 + a] : -1;
+                faceIn[a] = flip[a] ? up : down;
+                faceOut[a] = flip[a] ? down : up;
+            }
+        }
         float4 src[DOM_M], acc[DOM_M];
         for (int m = 0; m < DOM_M; ++m) src[m] = active ? source[v * DOM_M + m] : (float4)(0.0f), acc[m] = (float4)(0.0f);
         global float4* yf = yFace + ((size_t)k * nx + i) * DOM_K;
@@ -93,6 +122,8 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
             in[0] = lx[d];
             in[1] = j > 0 ? yf[d] : ((reflective >> inY) & 1 ? boundaryIn[yCell + (octant ^ 2) * DOM_K + d] : (float4)(0.0f));
             in[2] = k > 0 ? zf[d] : ((reflective >> inZ) & 1 ? boundaryIn[zCell + (octant ^ 4) * DOM_K + d] : (float4)(0.0f));
+            for (int a = 0; a < 3; ++a)
+                if (faceIn[a] >= 0) in[a] += mirrorIn[(size_t)faceIn[a] * N + (octant ^ (1 << a)) * DOM_K + d];
             float4 out[3] = {(float4)(0.0f), (float4)(0.0f), (float4)(0.0f)}, average = (float4)(0.0f);
             if (vacuum) {
                 // Nothing dims or scatters: phi1 = 1, psi = 1/2.
@@ -121,6 +152,12 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
                     }
                 average = (s + flow) * invSigma;
             }
+            for (int b = 0; b < 3; ++b)
+                if (faceOut[b] >= 0) {
+                    const float4 kept = fresnel[(size_t)faceOut[b] * N + n] * out[b];
+                    mirrorOut[(size_t)faceOut[b] * N + n] = kept;
+                    out[b] -= kept;
+                }
             lx[d] = out[0];
             yf[d] = out[1];
             zf[d] = out[2];

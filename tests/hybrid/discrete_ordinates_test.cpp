@@ -169,6 +169,62 @@ TEST(DiscreteOrdinates, VanDeHulstSlab) {
 // medium of extinction sigma everywhere: q / (4 pi) int dOmega int e^{-sigma r} dr
 // over the part of each ray from x inside the box, by a product rule in
 // (cos theta, phi) fine enough for the box's solid angle.
+TEST(DiscreteOrdinates, RefractingSlabReflectsItsOwnLightInside) {
+    // A purely absorbing slab of index 1.5 and optical thickness tau, infinite
+    // across, glowing with a uniform isotropic source q, between layers of air.
+    // Along a direction at cosine mu to the normal a crossing adds
+    // A = q / sigma (1 - t), t = e^{-tau / mu}, and each boundary sends back R(mu)
+    // (Fresnel, Born and Wolf's angle form): the radiance leaving the top is
+    //   (1 - R) (A + R t A + (R t)^2 A + ...) = (1 - R) A / (1 - R t),
+    // 0 past the critical angle. The index-matched slab gives A.
+    const int cells = 10;
+    const double dz = 0.25, sigma = 1.0, q = 0.7, tau = sigma * dz * (cells - 2);
+    for (double ior : {1.0, 1.5}) {
+        DomGrid grid;
+        grid.dims = {1, 1, cells};
+        grid.edges = Vec3(1e3, 1e3, dz);
+        grid.extinction.assign(cells, glm::vec4(glm::vec3(float(sigma)), 1.0f));
+        grid.extinction.front() = grid.extinction.back() = glm::vec4(0.0f);  // air
+        grid.scattering.assign(cells, glm::vec4(0.0f));
+        grid.phase.assign(cells, glm::vec4(0.0f));
+        grid.ior = ior;
+        for (int k = 0; k < cells; ++k) grid.boundaryNormal.push_back(glm::vec3(0, 0, k < cells / 2 ? -1 : 1));
+        DomSolver solver(device(), grid, 48, 1, {true, true, true, true, false, false});
+        const float y00 = float(0.5 / std::sqrt(kPi));  // the source towards any direction is s_0 Y_00
+        std::vector<glm::vec4> source(cells, glm::vec4(glm::vec3(float(q) / y00), 0.0f));
+        source.front() = source.back() = glm::vec4(0.0f);
+        cl::CommandQueue& queue = device().marchQueue;
+        solver.setSource(queue, source);
+        const Ordinates& o = solver.ordinates();
+        const int n = int(o.directions.size());
+        const size_t top = DomSolver::faceOffset(5, grid.dims, n);
+        std::vector<double> leaving(n, 0.0);
+        for (int it = 0; it < 40; ++it) {  // one reflection per iteration; (R t)^40 is far below 1e-6
+            solver.iterate(queue);
+            const std::vector<glm::vec4> out = solver.boundaryRadiance(queue);
+            for (int i = 0; i < n; ++i) leaving[i] += out[top + i].r;
+        }
+        for (int i = 0; i < n; ++i) {
+            const double mu = o.directions[i].z;
+            if (mu <= 0.0) continue;
+            const double t = std::exp(-tau / mu), a = q / sigma * (1.0 - t);
+            double expected = a;
+            if (ior != 1.0) {
+                const double sinT = std::sqrt(1.0 - mu * mu) * ior;  // outside
+                double r = 1.0;
+                if (sinT < 1.0) {
+                    const double inside = std::acos(mu), outside = std::asin(sinT);
+                    const double rs = std::sin(inside - outside) / std::sin(inside + outside);
+                    const double rp = std::tan(inside - outside) / std::tan(inside + outside);
+                    r = 0.5 * (rs * rs + rp * rp);
+                }
+                expected = (1.0 - r) * a / (1.0 - r * t);
+            }
+            EXPECT_NEAR(leaving[i], expected, 1e-3 * q / sigma) << "ior " << ior << " mu " << mu;
+        }
+    }
+}
+
 double uncollidedFlux(const Vec3& x, const Bounds3& box, double q, double sigma) {
     constexpr int kMu = 2000, kPhi = 4000;
     double sum = 0.0;
