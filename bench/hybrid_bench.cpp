@@ -8,7 +8,7 @@
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z]
-//   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N]
+//   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N] [--frame-size N]
 //   every subcommand also takes [--record docs/results/hybrid-SUBCOMMAND.md]
 //
 // speed: on the bundled sphere lit by one point light, the median over repeats of
@@ -22,8 +22,9 @@
 // refraction: on the sphere (sigma_t 2, albedo 0.75) and the wax bunny (sigma_t
 // 8, albedo 0.95, one point light) at each ior: ss against the refracting
 // single-scattering reference, and ss, lbl and mdom against the path tracer
-// (its noise taken out); and ss's whole render at ior 1 and at that ior, the
-// median of repeats, measured in the same run.
+// (its noise taken out); and ss's frame drawn again with its light and view
+// cached, and its whole render, at ior 1 and at that ior, the medians
+// measured in the same run.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -42,6 +43,10 @@
 #include "hybrid/voxelisation.h"
 #include "methods/method_table.h"
 #include "preprocess/preprocessor.h"
+#include "runtime/offscreen_context.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/opengl.h"
+#include "runtime/scattering_renderer.h"
 
 using namespace lucent;
 
@@ -163,15 +168,36 @@ double medianRenderSeconds(const LoadedScene& loaded, const MethodSettings& sett
     return median(times);
 }
 
-void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats) {
+// ss's frame drawn again with everything cached (the light through the
+// boundary and the view's stretches traced by the warm-up), in ms: the median
+// of `frames` at frameSize x frameSize.
+double ssFrameMs(const LoadedScene& loaded, const SampleSet& samples, int frameSize, int frames) {
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    OffscreenFrame frame(frameSize, frameSize);
+    ScatteringRenderer renderer;
+    renderer.addObject(translucentObjectFor(loaded.objects[0], samples));
+    renderer.setLights(loaded.desc.lights);
+    Camera camera = loaded.desc.camera;
+    camera.width = camera.height = frameSize;
+    const ViewSetup view = viewSetupFor(camera, loaded.bounds());
+    DrawOptions options;
+    options.surface = false;
+    return 1e3 * medianFrameSeconds(3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
+}
+
+void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats, int frameSize) {
+    const int frames = 20;
     out.print(
         "relative RMSE of luminance, %dx%d, no surface term: ss against --method reference (single scattering, "
         "refracting), and ss, lbl and mdom (default options) against --method path at %d paths per pixel (its "
-        "noise taken out); ss's whole render (s), the median of %d, at ior 1 and at the ior\n\n",
-        size, size, spp, repeats);
+        "noise taken out); ss's frame at %dx%d drawn again with its light and view cached (ms, the median of %d), "
+        "and its whole render at %dx%d (s, the median of %d, with the light's solve through the boundary), at ior 1 "
+        "and at the ior\n\n",
+        size, size, spp, frameSize, frameSize, frames, size, size, repeats);
     out.tableHeader({"model", "ior", "path noise", "ss vs single", "ss", "lbl", "mdom", "lbl mean ratio",
-                     "ss at ior 1 (s)", "ss (s)", "ratio", "reference (s)", "path (s)"},
-                    {false, true, true, true, true, true, true, true, true, true, true, true, true});
+                     "ss frame at ior 1 (ms)", "ss frame (ms)", "frame ratio", "ss render at ior 1 (s)",
+                     "ss render (s)", "render ratio", "reference (s)", "path (s)"},
+                    {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true});
     for (const std::string model : {"sphere", "bunny"}) {
         SceneDesc matched = refractionScene(model, 1.0);
         matched.camera.width = matched.camera.height = size;
@@ -182,6 +208,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         MethodSettings settings;
         settings.surface = false;
         const double matchedSeconds = medianRenderSeconds(indexMatched, settings, repeats);
+        const double matchedFrameMs = ssFrameMs(indexMatched, samples, frameSize, frames);
         for (double ior : iors) {
             SceneDesc scene = refractionScene(model, ior);
             scene.camera = matched.camera;
@@ -194,14 +221,18 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const double referenceSeconds = stopwatch.seconds();
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
             const double ssSeconds = medianRenderSeconds(loaded, settings, repeats);
+            const double frameMs = ssFrameMs(loaded, samples, frameSize, frames);
             const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
-            out.print("| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.2f | %.2f | %.2f | %.1f | %.1f |\n",
-                      model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
-                      luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,
-                      luminanceRelativeRmse(mdom, pathA, pathB).debiased, meanLuminance(lbl) / meanLuminance(path),
-                      matchedSeconds, ssSeconds, ssSeconds / matchedSeconds, referenceSeconds, truth.seconds);
+            out.print(
+                "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.1f "
+                "| %.1f |\n",
+                model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
+                luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,
+                luminanceRelativeRmse(mdom, pathA, pathB).debiased, meanLuminance(lbl) / meanLuminance(path),
+                matchedFrameMs, frameMs, frameMs / matchedFrameMs, matchedSeconds, ssSeconds,
+                ssSeconds / matchedSeconds, referenceSeconds, truth.seconds);
         }
     }
 }
@@ -304,11 +335,13 @@ int main(int argc, char** argv) {
     md->add_option("--moments", mdomMoments, "Stored moments (4, 9, 16, 25, 36); fewer fit larger grids")
         ->check(CLI::IsMember({4, 9, 16, 25, 36}));
     std::vector<double> iors{1.33, 1.5};
-    int refractionRepeats = 3, refractionSpp = 1024, refractionSize = 64;
+    int refractionRepeats = 3, refractionSpp = 1024, refractionSize = 64, refractionFrame = 256;
     auto* rf = app.add_subcommand("refraction", "ss, lbl and mdom at refracting boundaries: accuracy and ss's time");
     rf->add_option("--iors", iors, "Indices of refraction")->delimiter(',')->check(CLI::Range(1.0, 4.0));
     rf->add_option("--spp", refractionSpp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
     rf->add_option("--size", refractionSize, "Image width and height")->check(CLI::Range(8, 2048));
+    rf->add_option("--frame-size", refractionFrame, "Width and height of the timed ss frames")
+        ->check(CLI::Range(8, 2048));
     rf->add_option("--repeats", refractionRepeats, "ss renders timed per row")->check(CLI::Range(1, 100));
     std::string recordFile;
     for (CLI::App* sub : {sp, ac, md, rf})
@@ -318,7 +351,7 @@ int main(int argc, char** argv) {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
         if (rf->parsed())
-            refraction(out, iors, refractionSpp, refractionSize, refractionRepeats);
+            refraction(out, iors, refractionSpp, refractionSize, refractionRepeats, refractionFrame);
         else if (md->parsed())
             mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
         else if (sp->parsed())

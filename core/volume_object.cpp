@@ -128,6 +128,11 @@ double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& 
     return path;
 }
 
+void VolumeObject::setIor(double ior) {
+    if (!(ior >= 1.0 && ior <= 4.0)) throw Error(desc_.name, "ior must lie in [1, 4]");
+    desc_.medium.ior = ior;
+}
+
 Rgb VolumeObject::extinction(const Vec3& p) const {
     if (!blockers_.empty() && insideBlocker(p)) return Rgb(0.0);
     return desc_.medium.sigmaT * density_->at(p);

@@ -27,6 +27,9 @@ public:
     VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers);
 
     const ObjectDesc& desc() const { return desc_; }
+    // A new refractive index for the medium, in [1, 4] (Error otherwise): the
+    // boundary's optics change, nothing of the geometry does (the viewer's ior).
+    void setIor(double ior);
     const TriangleMesh& mesh() const { return mesh_; }  // in the world
     // Object to world, and the mesh and blockers as their files give them.
     const Similarity& placement() const { return desc_.transform; }

@@ -13,10 +13,10 @@ std::vector<std::string> LblMethod::limitations(const LoadedScene& scene, const 
         const MediumDesc& m = o.desc().medium;
         if (m.ior != 1.0)
             out.push_back("object '" + o.desc().name +
-                          "': ior differs from 1: single scattering refracts (as --method ss) and the multiple-"
-                          "scattering grid's rays bend, but the grid lets the light that reaches the boundary from "
-                          "inside escape instead of reflecting it: 10-11% from --method path on the sphere at ior "
-                          "1.33-1.5, 23-26% on the wax bunny, too dark (docs/results/refraction.md)");
+                          "': ior differs from 1: single scattering refracts (as --method ss), and the multiple "
+                          "scattering enters, reflects inside and leaves by Fresnel through a smoothed boundary: "
+                          "4-6% from --method path on the sphere and 12-14% on the wax bunny at ior 1.33-1.5, "
+                          "beyond the 10% goal where ss misses its own (docs/results/refraction.md)");
         if (std::abs(m.g) > 0.5)
             out.push_back("object '" + o.desc().name +
                           "': |g| > 0.5: the lattice scatters isotropically on reduced coefficients (similarity) "

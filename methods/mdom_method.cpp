@@ -29,9 +29,10 @@ std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const
         if (m.ior != 1.0)
             out.push_back(
                 "object '" + o.desc().name +
-                "': ior differs from 1: single scattering refracts (as --method ss), but the multiple scattering "
-                "marches light in straight lines (thesis 5.2) and takes the boundary as index-matched: 11-22% from "
-                "--method path on the sphere and 14-22% on the wax bunny at ior 1.33-1.5 (docs/results/refraction.md)");
+                "': ior differs from 1: single scattering refracts (as --method ss), and the multiple scattering's "
+                "light enters through the boundary and reflects inside by Fresnel on the voxels' faces: 4-6% from "
+                "--method path on the sphere and 11-12% on the wax bunny at ior 1.33-1.5, beyond the 10% goal "
+                "where ss misses its own (docs/results/refraction.md)");
         if (std::abs(m.g) > kMdomMaxG)
             out.push_back(
                 "object '" + o.desc().name + "': |g| > " + std::to_string(kMdomMaxG).substr(0, 3) +

@@ -85,16 +85,16 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // ("What auto picks"). Single scattering alone misses light that grows with
     // the albedo; below kSingleScatteringAlbedo it stays within the goal.
     // Only the path tracer gives full transport through a boundary whose ior is
-    // not 1 within the goal: ss, lbl and mdom refract their single scattering,
-    // but lbl's and mdom's multiple scattering does not reflect at the boundary,
-    // and ss misses its own goal on detailed meshes (docs/accuracy.md).
+    // not 1 within the goal on every bundled scene: lbl and mdom refract and
+    // reflect at the boundary (4-6% on the sphere) but miss it on the wax bunny,
+    // where ss's single scattering misses its own (docs/accuracy.md).
     for (const ObjectDesc& o : scene.objects)
         if (o.medium.ior != 1.0)
             return {"path",
                     "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
-                        ": only the path tracer gives full transport through a refracting boundary within 10% (lbl "
-                        "is 10-11% from it on the sphere and 23-26% on the wax bunny, mdom 11-22%, ss 13-15% from "
-                        "single scattering on the bunny: docs/results/refraction.md); it is slow: "
+                        ": only the path tracer gives full transport through a refracting boundary within 10% on "
+                        "every measured scene (lbl and mdom are 4-6% from it on the sphere but 11-14% on the wax "
+                        "bunny, where ss is 13-15% from single scattering: docs/results/refraction.md); it is slow: "
                         "lower --samples or set --noise for a draft"};
     double albedo = 0.0;
     for (const ObjectDesc& o : scene.objects)

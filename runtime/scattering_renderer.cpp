@@ -133,6 +133,7 @@ void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, cons
     o.samples = std::make_unique<GpuSamples>(samples);
     o.sampleSet = &samples;
     o.volume = volume;
+    o.refractedView = RefractedView{};  // traced for the medium it had (its ior, say)
     impl_->retraceAll();
     o.opticallyThick = samples.parameters.scheme == SampleScheme::OpticallyThick;
     o.shadowsValid = false;

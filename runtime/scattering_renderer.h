@@ -100,6 +100,8 @@ public:
     // Gives object index new samples (its medium changed and it was preprocessed
     // again, say) and the volume of that medium to trace its light through
     // (TranslucentObject::volume; null: its SH); its mesh and placement stay.
+    // Also after the volume's ior changed (VolumeObject::setIor): the light and
+    // the view through its boundary are traced again.
     void setSamples(size_t index, const SampleSet& samples, const VolumeObject* volume);
     size_t objectCount() const;
     // Moves, turns or scales object index (any similarity, every frame if need be:

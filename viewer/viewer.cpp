@@ -136,8 +136,8 @@ void lightsPanel(ViewerState& state) {
     }
 }
 
-// The selected object's placement: which object, where it stands, its scale,
-// and turns of 15 degrees about the world's axes through its origin.
+// The selected object's placement: which object, its index of refraction,
+// where it stands, its scale, and turns of 15 degrees about the world's axes through its origin.
 void objectsPanel(ViewerState& state, const LoadedScene& loaded) {
     if (state.placements.empty()) return;
     int selected = int(state.selected);
@@ -150,6 +150,12 @@ void objectsPanel(ViewerState& state, const LoadedScene& loaded) {
     if (ImGui::DragFloat3("position", glm::value_ptr(position), 0.01f)) {
         p.translation = Vec3(position);
         state.placementsChanged = true;
+    }
+    // The index of refraction: no new preprocessing (sample files serve every ior).
+    float ior = float(state.iors[state.selected]);
+    if (ImGui::SliderFloat("ior", &ior, 1.0f, 2.0f, "%.3f")) {
+        state.iors[state.selected] = std::clamp(double(ior), 1.0, 4.0);
+        state.iorsChanged = true;
     }
     float scale = float(p.scale);
     if (ImGui::SliderFloat("scale", &scale, 0.1f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic) && scale > 0.0f) {
@@ -197,7 +203,7 @@ constexpr int kPanelWidth = 380;
 class Viewer {
 public:
     Viewer(const SceneDesc& scene, const ViewerOptions& options, std::vector<std::string> script,
-           const LoadedScene& loaded, std::string methodName)
+           LoadedScene& loaded, std::string methodName)
         : options_(options),
           loaded_(loaded),
           methodName_(std::move(methodName)),
@@ -288,12 +294,22 @@ private:
         state_.camera.resize(width, height);
     }
 
-    // Lights and placements the panel or the script changed reach the renderer,
-    // and the multiple scattering is solved again for them.
+    // Lights, indices and placements the panel or the script changed reach the
+    // renderer, and the multiple scattering is solved again for them.
     void applyEdits() {
         if (state_.lightsChanged) {
             renderer_.setLights(state_.lights);
             state_.lightsChanged = false;
+            grids_.invalidate();
+        }
+        if (state_.iorsChanged) {
+            for (size_t i = 0; i < state_.iors.size(); ++i) {
+                VolumeObject& o = loaded_.objects[i];
+                if (o.desc().medium.ior == state_.iors[i]) continue;
+                o.setIor(state_.iors[i]);
+                renderer_.setSamples(i, loaded_.samples[i], &o);  // its light and view traced again
+            }
+            state_.iorsChanged = false;
             grids_.invalidate();
         }
         if (state_.placementsChanged) {
@@ -398,7 +414,7 @@ private:
     }
 
     const ViewerOptions& options_;
-    const LoadedScene& loaded_;
+    LoadedScene& loaded_;  // the objects' ior follows the panel
     const std::string methodName_;
     const std::vector<std::string> script_;
     size_t scriptLine_ = 0;
@@ -426,7 +442,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
     const MethodEntry& method = findMethod("ss");
     if (const std::string why = method.unavailableReason(); !why.empty())
         throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
-    const LoadedScene loaded = loadScene(scene, method.needsSamples);
+    LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
     Viewer(scene, options, std::move(script), loaded, method.name).run();
 }

@@ -147,6 +147,12 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         if (!(p.scale * factor >= kMinScale && p.scale * factor <= kMaxScale))
             throw Error(where, "scale would leave [" + formatNumber(kMinScale) + ", " + formatNumber(kMaxScale) + "]");
         p.scale *= factor;
+    } else if (command == "ior") {
+        double ior = 0.0;
+        if (!(in >> ior) || !(ior >= 1.0 && ior <= 4.0)) throw Error(where, "ior needs an index in [1, 4]");
+        if (state.selected >= state.iors.size()) throw Error(where, "no object is selected");
+        state.iors[state.selected] = ior;
+        state.iorsChanged = true;
     } else if (command == "extinction") {
         state.extinctionScale = float(readPositive(in, where, "extinction"));
     } else if (command == "exposure") {

@@ -1,6 +1,6 @@
 #pragma once
 // What the viewer shows and the user (or a script) changes: camera, lights,
-// where each object stands, medium scale, passes, exposure.
+// where each object stands and its index of refraction, medium scale, passes, exposure.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,7 +12,10 @@ namespace lucent {
 
 struct ViewerState {
     explicit ViewerState(const SceneDesc& scene) : camera(scene.camera), lights(scene.lights) {
-        for (const ObjectDesc& o : scene.objects) placements.push_back(o.transform);
+        for (const ObjectDesc& o : scene.objects) {
+            placements.push_back(o.transform);
+            iors.push_back(o.medium.ior);
+        }
     }
     OrbitCamera camera;
     std::vector<Light> lights;
@@ -21,6 +24,9 @@ struct ViewerState {
     std::vector<Similarity> placements;
     size_t selected = 0;
     bool placementsChanged = false;
+    // Each object's refractive index, from the scene; `ior` (and the panel) change the selected one's.
+    std::vector<double> iors;
+    bool iorsChanged = false;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
     // Each sample's light traced through the objects (DrawOptions::tracedLight)

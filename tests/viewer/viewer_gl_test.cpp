@@ -104,9 +104,10 @@ TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
     EXPECT_NEAR(ratioSum / double(compared), 2.0, 0.05);
 }
 
-// The selected object moved, turned and scaled by script is the object the
-// scene's transform places there: the viewer's frame equals lucent render's.
-TEST(Viewer, MovingTheSelectedObjectPlacesItAsTheScenesTransformDoes) {
+// The selected object moved, turned and scaled by script, and given another
+// ior, is the object the scene's transform places there with that ior: the
+// viewer's frame equals lucent render's.
+TEST(Viewer, MovingAndRefractingTheSelectedObjectDrawsWhatTheSceneSays) {
     test::ScratchDir dir;
     const std::string head = R"({
       "camera": {"position": [0, 1, 5], "target": [0.3, 0, 0], "fov_y": 35, "width": 96, "height": 96},
@@ -115,12 +116,15 @@ TEST(Viewer, MovingTheSelectedObjectPlacesItAsTheScenesTransformDoes) {
                              (test::modelsDir() / "bunny.off").string() + R"(",
                    "medium": {"sigma_t": 4.0, "albedo": 0.75}, "samples": "s.lsf")";
     const auto scene = dir.write("scene.json", head + "}]}");
-    const auto placed = dir.write("placed.json", head + R"(,
+    std::string refracting = head;
+    const std::string albedo = "\"albedo\": 0.75";
+    refracting.replace(refracting.find(albedo), albedo.size(), albedo + ", \"ior\": 1.4");
+    const auto placed = dir.write("placed.json", refracting + R"(,
       "transform": {"scale": 1.3, "rotate": {"axis": [0, 1, 0], "degrees": 40}, "translate": [0.6, 0, 0]}}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto shot = dir.path() / "moved.pfm", rendered = dir.path() / "rendered.pfm";
     const auto script = dir.write("move.txt",
-                                  "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\n"
+                                  "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\nior 1.4\n"
                                   "screenshot " +
                                       shot.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),

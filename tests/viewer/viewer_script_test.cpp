@@ -53,8 +53,9 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
 }
 
 // move, rotate and scale change the selected object only, in the world: a turn
-// about the world's axis through the object's origin after its own rotation.
-TEST(ViewerScript, TheSelectedObjectMovesTurnsAndScales) {
+// about the world's axis through the object's origin after its own rotation;
+// ior changes its index.
+TEST(ViewerScript, TheSelectedObjectMovesTurnsScalesAndRefracts) {
     ViewerState state(oneLight());
     ASSERT_EQ(state.placements.size(), 2u);
     EXPECT_EQ(state.placements[1].translation, Vec3(1, 2, 3));
@@ -68,6 +69,9 @@ TEST(ViewerScript, TheSelectedObjectMovesTurnsAndScales) {
     // +x: 90 about z -> +y; then 90 about x -> +z; times 2, from the object's origin.
     EXPECT_NEAR(glm::length(state.placements[1].point(Vec3(1, 0, 0)) - Vec3(1.5, 2, 4)), 0.0, 1e-12);
     EXPECT_TRUE(state.placements[0].isIdentity());
+    applyScriptLine(state, "ior 1.44", "s:6");
+    EXPECT_EQ(state.iors, std::vector<double>({1.0, 1.44}));
+    EXPECT_TRUE(state.iorsChanged);
 }
 
 TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
@@ -91,6 +95,9 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
         {"rotate 0 1 0", "s:1: rotate needs an axis and degrees in [-1e6, 1e6]"},
         {"scale -1", "s:1: scale needs a positive finite number"},
         {"scale 1e10", "s:1: scale would leave [1e-09, 1e+09]"},
+        {"ior 0.9", "s:1: ior needs an index in [1, 4]"},
+        {"ior nan", "s:1: ior needs an index in [1, 4]"},
+        {"ior", "s:1: ior needs an index in [1, 4]"},
     };
     for (const auto& [line, message] : bad) {
         ViewerState state(oneLight());
