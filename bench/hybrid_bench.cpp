@@ -182,7 +182,8 @@ double ssFrameMs(const LoadedScene& loaded, const SampleSet& samples, int frameS
     const ViewSetup view = viewSetupFor(camera, loaded.bounds());
     DrawOptions options;
     options.surface = false;
-    return 1e3 * medianFrameSeconds(3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
+    return 1e3 * medianFrameSeconds(
+                     3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
 }
 
 void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats, int frameSize) {
@@ -226,7 +227,8 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
             out.print(
-                "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.1f "
+                "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | "
+                "%.1f "
                 "| %.1f |\n",
                 model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
                 luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,

@@ -344,8 +344,7 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     const DeltaM dm = deltaM(medium.g, s.bands);
     MdomMaterials materials = materialsOf(vox, medium, dm);
     try {
-        DirectComponent direct =
-            directComponent(device, impl_->direct, object, shape, materials, lights, dm, s.bands);
+        DirectComponent direct = directComponent(device, impl_->direct, object, shape, materials, lights, dm, s.bands);
         stats.directSeconds = stopwatch.seconds();
         auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
         MdomSolution& solution = progress->solution;

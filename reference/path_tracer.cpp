@@ -75,7 +75,7 @@ double PathTracer::blockerDistance(const Vec3& origin, const Vec3& dir) const {
 }
 
 std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
-                                                                 const VolumeObject* inside, Rng& rng,
+                                                                 const VolumeObject* inside, PathSampler& rng,
                                                                  int channel) const {
     struct Span {
         Interval interval;
@@ -96,13 +96,13 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
 }
 
 std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
-                                                    const Interval& span, Rng& rng, int channel) {
+                                                    const Interval& span, PathSampler& rng, int channel) {
     const double mu = majorant(o, channel);
     if (!(mu > 0.0)) return std::nullopt;
     const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
     // Delta tracking: tentative collisions at rate mu, real with probability sigma(x) / mu.
-    for (double t = span.t0;;) {
-        t -= std::log(1.0 - rng.uniform()) / mu;
+    for (double t = span.t0, u = rng.flightUniform();; u = rng.uniform()) {
+        t -= std::log(1.0 - u) / mu;
         if (t >= span.t1) return std::nullopt;
         const double sigma = sigmaT * o.density().at(origin + t * dir);
         if (rng.uniform() * mu < sigma) return t;
@@ -135,7 +135,7 @@ const VolumeObject* PathTracer::containing(const Vec3& p) const {
     return inside;
 }
 
-Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
                          int channel) const {
     if (refracting_) return refractedRadiance(origin, dir, rng, settings, channel);
     double tStop = blockerDistance(origin, dir);
@@ -165,7 +165,8 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const Pa
     return total;
 }
 
-PathTracer::Exit PathTracer::walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const {
+PathTracer::Exit PathTracer::walk(const Vec3& origin, const Vec3& dir, PathSampler& rng, int maxScatter,
+                                  int channel) const {
     if (refracting_) return refractedWalk(origin, dir, rng, maxScatter, channel);
     Exit exit;
     const VolumeObject* inside = containing(origin);
@@ -202,13 +203,16 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
             for (int y = range.begin(); y < range.end(); ++y) {
                 for (int x = 0; x < cam.width; ++x) {
                     // One stream per pixel: the image is the same for any thread count.
-                    Rng rng(settings.seed, uint64_t(y) * uint64_t(cam.width) + uint64_t(x));
+                    const uint64_t pixel = uint64_t(y) * uint64_t(cam.width) + uint64_t(x);
+                    PathSampler rng = settings.stratified ? PathSampler(settings.seed, pixel)
+                                                          : PathSampler(Rng(settings.seed, pixel));
                     const Vec3 dir = rays.direction(x + 0.5, y + 0.5);
                     Rgb sum(0.0), sumSquares(0.0);
                     int taken = 0;
                     while (taken < spp) {
                         const int batch = settings.noiseTarget > 0.0 ? std::min(kNoiseBatch, spp - taken) : spp;
                         for (int s = 0; s < batch; ++s) {
+                            rng.startPath(uint32_t(taken + s));
                             Rgb L(0.0);
                             if (grey_)
                                 L = radiance(rays.origin(), dir, rng, settings, -1);

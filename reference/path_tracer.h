@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/image.h"
-#include "core/rng.h"
+#include "reference/path_sampler.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
 #include "core/refraction.h"
@@ -37,6 +37,9 @@ struct PathSettings {
     uint64_t seed = 1;
     int threads = 0;      // 0: all cores
     bool surface = true;  // add the direct Phong surface term at the first front face
+    // Each pixel's paths stratified in their first free flights (PathSampler);
+    // false: independent paths (lucent-bench-path measures the difference).
+    bool stratified = true;
 };
 
 class PathTracer {
@@ -52,7 +55,8 @@ public:
 
     // One camera path's radiance estimate along a unit direction. channel < 0
     // traces all channels at once (grey media only), else that channel alone.
-    Rgb radiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings, int channel) const;
+    Rgb radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
+                 int channel) const;
 
     // The analog random walk of one particle that starts at origin travelling
     // along dir, with no light gathered: where it leaves the media, for tallies
@@ -63,7 +67,7 @@ public:
         Rgb weight{1.0};  // the product of the albedos met
         int collisions = 0;
     };
-    Exit walk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
+    Exit walk(const Vec3& origin, const Vec3& dir, PathSampler& rng, int maxScatter, int channel) const;
 
     // Whether every medium is grey (one path serves all three channels).
     bool grey() const { return grey_; }
@@ -76,19 +80,19 @@ private:
     // The first collision along origin + t dir before tMax, or none. inside is the
     // object origin lies in (nullptr: none).
     std::optional<Collision> sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
-                                             const VolumeObject* inside, Rng& rng, int channel) const;
+                                             const VolumeObject* inside, PathSampler& rng, int channel) const;
     // The first real collision in o within span along origin + t dir, by delta tracking.
     static std::optional<double> sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
-                                                   const Interval& span, Rng& rng, int channel);
+                                                   const Interval& span, PathSampler& rng, int channel);
     // The Phong surface term at the first front face before tStop, as the reference adds it.
     Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings, int channel) const;
     // The object p lies in, or nullptr.
     const VolumeObject* containing(const Vec3& p) const;
     // radiance() and walk() in a scene with a refracting boundary (core/refraction.h):
     // paths go from boundary to boundary, reflected or refracted by Fresnel's odds there.
-    Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+    Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
                           int channel) const;
-    Exit refractedWalk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter, int channel) const;
+    Exit refractedWalk(const Vec3& origin, const Vec3& dir, PathSampler& rng, int maxScatter, int channel) const;
     // What a path at x going along w meets first in a refracting scene: a
     // collision in the object it is inside (collision), else the next boundary
     // (boundary, with the object it belongs to), else nothing or a blocker.
@@ -98,7 +102,7 @@ private:
         const VolumeObject* object = nullptr;
         bool blocked = false;  // a blocker comes first: the path ends
     };
-    Ahead ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, Rng& rng, int channel) const;
+    Ahead ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, PathSampler& rng, int channel) const;
     // The light gathered at a collision in a refracting scene: through the boundary
     // for a refracting object, along straight lines for an index-matched one.
     Rgb gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;

@@ -26,7 +26,8 @@ constexpr int kMaxBoundaryEvents = 256;
 // Reflects or refracts w at the boundary by Fresnel's odds and moves the path
 // to the side it goes on; returns what the crossing multiplies the radiance
 // carried back along the path by.
-double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const VolumeObject*& inside, Rng& rng) {
+double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const VolumeObject*& inside,
+             PathSampler& rng) {
     const double n = object.desc().medium.ior;
     const Vec3 facing = hit.entering ? hit.normal : -hit.normal;
     const double eta = hit.entering ? 1.0 / n : n;
@@ -50,7 +51,7 @@ Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x,
     return lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
 }
 
-PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, Rng& rng,
+PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, PathSampler& rng,
                                     int channel) const {
     Ahead a;
     if (inside) {
@@ -69,7 +70,7 @@ PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, c
     return a;
 }
 
-Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng, const PathSettings& settings,
+Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
                                   int channel) const {
     Rgb total = surfaceTerm(origin, dir, blockerDistance(origin, dir), settings, channel);
     const VolumeObject* inside = containing(origin);
@@ -101,7 +102,7 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, Rng& rng,
     return total;
 }
 
-PathTracer::Exit PathTracer::refractedWalk(const Vec3& origin, const Vec3& dir, Rng& rng, int maxScatter,
+PathTracer::Exit PathTracer::refractedWalk(const Vec3& origin, const Vec3& dir, PathSampler& rng, int maxScatter,
                                            int channel) const {
     Exit exit;
     const VolumeObject* inside = containing(origin);

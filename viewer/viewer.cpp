@@ -202,8 +202,8 @@ constexpr int kPanelWidth = 380;
 // function of its own.
 class Viewer {
 public:
-    Viewer(const SceneDesc& scene, const ViewerOptions& options, std::vector<std::string> script,
-           LoadedScene& loaded, std::string methodName)
+    Viewer(const SceneDesc& scene, const ViewerOptions& options, std::vector<std::string> script, LoadedScene& loaded,
+           std::string methodName)
         : options_(options),
           loaded_(loaded),
           methodName_(std::move(methodName)),

@@ -94,7 +94,7 @@ Fluxes slabFluxes(double thickness, double albedo, double g, double mu0, int n) 
     const Vec3 beam(std::sqrt(1.0 - mu0 * mu0), 0.0, -mu0);
     double up = 0.0, up2 = 0.0, down = 0.0, down2 = 0.0;
     for (int i = 0; i < n; ++i) {
-        Rng rng(7, uint64_t(i));
+        PathSampler rng(Rng(7, uint64_t(i)));
         const PathTracer::Exit e = tracer.walk(Vec3(0.0, 0.0, thickness) - (1e-3 / mu0) * beam, beam, rng, 1 << 20, -1);
         if (!e.escaped) continue;
         const double w = e.weight.g;

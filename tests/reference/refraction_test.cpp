@@ -115,7 +115,7 @@ Tally walkSlab(double degrees, double n, double albedo, int maxScatter, int walk
     const Vec3 w(std::sin(i), 0.0, -std::cos(i)), origin = Vec3(0.0, 0.0, 1.0) - 3.0 * w;
     Tally tally;
     for (int k = 0; k < walks; ++k) {
-        Rng rng(7, uint64_t(k));
+        PathSampler rng(Rng(7, uint64_t(k)));
         const PathTracer::Exit e = tracer.walk(origin, w, rng, maxScatter, -1);
         if (!e.escaped) continue;
         if (e.direction.z < 0.0)
