@@ -42,11 +42,7 @@ ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
     g.source.assign(3 * voxels, 0.0f);
     g.extinction.resize(3 * voxels);
     g.ior = ior;
-    if (!refraction.empty()) {
-        g.refraction.resize(4 * voxels);
-        for (size_t v = 0; v < voxels; ++v)
-            for (int c = 0; c < 4; ++c) g.refraction[4 * v + c] = refraction[v][c];
-    }
+    g.refraction = refraction;
     const Vec3 voxel = bounds.extent() / Vec3(dims[0], dims[1], dims[2]);
     std::vector<double> y(m), gl(m);
     for (int i = 0; i < m; ++i) gl[i] = std::pow(this->g, int(std::sqrt(double(i))));
@@ -359,10 +355,8 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
                                          ? glm::vec4(0.0f)
                                          : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
         solution.peaks = std::move(direct.peaks);
-        if (vox.refracting) {
-            solution.refraction = vox.refraction;
-            solution.ior = vox.ior;
-        }
+        solution.refraction = vox.viewRefraction();
+        solution.ior = vox.ior;
         progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{});
         progress->solver->setSource(device.marchQueue, direct.source);
         return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));

@@ -58,9 +58,9 @@ struct MdomSolution {
         }
     };
     std::vector<Peak> peaks;
-    // Where the medium refracts: the smoothed index and its gradient per voxel
-    // (Voxelisation::refraction), along which the view bends; else empty.
-    std::vector<glm::vec4> refraction;
+    // Where the medium refracts: the smoothed index and its gradient per voxel,
+    // as ScatteringGrid::refraction (Voxelisation::viewRefraction); else empty.
+    std::vector<float> refraction;
     double ior = 1.0;
 
     // The view pass's grid for a pinhole camera at eye. The light scattered

@@ -51,6 +51,14 @@ void gaussianBlur(std::vector<float>& values, const std::array<int, 3>& dims, do
     }
 }
 
+std::vector<float> Voxelisation::viewRefraction() const {
+    std::vector<float> out;
+    if (!refracting) return out;
+    out.reserve(4 * refraction.size());
+    for (const glm::vec4& r : refraction) out.insert(out.end(), {r.x, r.y, r.z, r.w});
+    return out;
+}
+
 Voxelisation voxelise(const VolumeObject& object, int resolution) {
     Voxelisation v;
     v.shape = gridShapeFor(object.mesh().bounds(), resolution);

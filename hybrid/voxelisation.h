@@ -49,6 +49,10 @@ struct Voxelisation {
     std::vector<glm::vec4> refraction;  // x: index n; yzw: grad n per world unit
     bool refracting = false;            // n differs from 1 somewhere
     double ior = 1.0;                   // the medium's index, inside
+
+    // The index and its gradient as ScatteringGrid::refraction holds them (four
+    // floats per voxel), empty when nothing refracts: what the view pass bends along.
+    std::vector<float> viewRefraction() const;
 };
 
 Voxelisation voxelise(const VolumeObject& object, int resolution);

@@ -203,12 +203,8 @@ ScatteringGrid Lattice::finish(cl::CommandQueue& queue) {
             g.source[3 * i + c] = r[i][c];
             g.extinction[3 * i + c] = grid_.material[i].a > 0.0f ? grid_.material[i][c] : 0.0f;
         }
-    if (grid_.refracting) {
-        g.ior = grid_.ior;
-        g.refraction.resize(4 * voxels_);
-        for (size_t i = 0; i < voxels_; ++i)
-            for (int c = 0; c < 4; ++c) g.refraction[4 * i + c] = grid_.refraction[i][c];
-    }
+    g.ior = grid_.ior;
+    g.refraction = grid_.viewRefraction();
     return g;
 }
 
