@@ -45,6 +45,7 @@ Command addInfoCommand(CLI::App& app) {
         std::printf("  mean Poisson radius    %g\n", p.meanRadius);
         std::printf("  width factor           %g (Gaussian FWHM / radius)\n", p.widthFactor);
         std::printf("  cull epsilon           %g\n", p.cullEpsilon);
+        std::printf("  placement scale        %g (the optical size it was made for)\n", p.placementScale);
         std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)"
                                                      : p.scheme == SampleScheme::OpticallyThick
                                                          ? "optically thick (the surface's closed form, no samples)"

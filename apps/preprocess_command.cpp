@@ -55,8 +55,9 @@ Command addPreprocessCommand(CLI::App& app) {
         if (o->threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o->threads);
 
-        // Samples live in each object's own space: the transforms are the runtime's.
-        const SceneDesc scene = withoutTransforms(parseScene(o->scene));
+        // Samples live in each object's own space, made at its placement's scale:
+        // its optical size (preprocess/preprocessor.h).
+        const SceneDesc scene = parseScene(o->scene);
         // No sample file may replace an input of this run, nor serve two objects.
         std::vector<std::filesystem::path> outputs;
         for (const auto& object : scene.objects) outputs.push_back(object.samples);

@@ -141,6 +141,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.put(p.cullEpsilon);
     w.put(uint32_t(p.scheme));
     w.put(p.regionAxis);
+    w.put(p.placementScale);
     w.putArray(s.positions);
     w.putArray(s.radii);
     w.putArray(s.widths);
@@ -263,6 +264,9 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     p.regionAxis = r.get<uint32_t>();
     if (p.regionAxis > kNoRegionAxis)
         throw Error(name, "region axis " + std::to_string(p.regionAxis) + " is out of range");
+    p.placementScale = r.get<float>();
+    if (!(std::isfinite(p.placementScale) && p.placementScale > 0.0f))
+        throw Error(name, "sample file header holds a placement scale that is not positive and finite");
     // The counts fix the size: check it before allocating anything they claim.
     const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 +
                                sizeof(float) * s.coefficientsPerSample();

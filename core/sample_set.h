@@ -40,6 +40,10 @@ struct SampleParameters {
     float cullEpsilon = 1e-3f;  // samples receiving less than this fraction of full light are culled
     SampleScheme scheme = SampleScheme::Lucent;
     uint32_t regionAxis = kNoRegionAxis;  // axis of the density slabs the Gaussians are clipped to
+    // The placement's scale the object was preprocessed at (its optical size:
+    // sigma_t per world unit times this per object unit). The runtime raises
+    // psi to placement scale / this (runtime/internal/sample_light.glsl).
+    float placementScale = 1.0f;
 };
 
 // A ball of the medium tangent to the object's boundary at the point nearest to a
@@ -95,7 +99,7 @@ struct SampleSet {
     const std::vector<float>& coefficients() const;
 };
 
-inline constexpr uint32_t kSampleFileVersion = 6;
+inline constexpr uint32_t kSampleFileVersion = 7;
 // SH bands a sample file may hold: the most the runtime evaluates (runtime/internal/sample_light.glsl).
 inline constexpr uint32_t kMaxSampleShOrder = 8;
 

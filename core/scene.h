@@ -55,7 +55,7 @@ struct ObjectDesc {
     MediumDesc medium;
     std::optional<SurfaceDesc> surface;
     std::filesystem::path samples;
-    Similarity transform;      // object to world; not part of the fingerprint: one sample file serves every placement
+    Similarity transform;      // object to world; not part of the fingerprint (the sample file records its scale)
     uint64_t fingerprint = 0;  // of the mesh, blocker and grid bytes and the medium: ties a sample file to it
 };
 
@@ -77,7 +77,7 @@ struct SceneDesc {
 SceneDesc parseScene(const std::filesystem::path& file);
 SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file);
 
-// The scene with every object in its own space: what preprocessing works in.
+// The scene with every object in its own space and at scale 1.
 SceneDesc withoutTransforms(SceneDesc scene);
 
 }  // namespace lucent

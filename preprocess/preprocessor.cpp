@@ -268,17 +268,10 @@ void applyWeights(const VolumeObject& object, const std::vector<WeightedSample>&
     for (size_t i = 0; i < weights.size(); ++i) set.scattering[i] *= float(scale * weights[i]);
 }
 
-}  // namespace
-
-// Thesis Algorithms 1 and 2: layers, heuristic, Poisson disks, SH projection.
-SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings* timings) {
-    PreprocessTimings local;
-    PreprocessTimings& t = timings ? *timings : local;
+// Thesis Algorithms 1 and 2: layers, heuristic, Poisson disks, SH projection,
+// for an object that is not placed.
+SampleSet preprocessOwnSpace(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings& t) {
     Stopwatch clock;
-    if (object.placed())
-        throw Error(object.desc().mesh.string(),
-                    "samples are made in the object's own space: preprocess it without "
-                    "its transform (withoutTransforms, core/scene.h)");
     const MediumDesc& medium = object.desc().medium;
     const TriangleMesh& mesh = object.mesh();
     if (settings.shOrder < 1 || settings.shOrder > int(kMaxSampleShOrder))
@@ -364,6 +357,30 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     set.boundary = std::move(projected.balls);
     t.projectionRays = projected.raysCast;
     t.projection = clock.lap();
+    return set;
+}
+
+}  // namespace
+
+SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings, PreprocessTimings* timings) {
+    PreprocessTimings local;
+    PreprocessTimings& t = timings ? *timings : local;
+    if (!object.placed()) return preprocessOwnSpace(object, settings, t);
+    // Placed at scale s0, the object is optically its own mesh with sigma_t s0
+    // per own unit: sampled so, every decision (layer depth, sample spacing
+    // against the mean free path, optically thick or not) holds at the size it
+    // is drawn at. Rotation and translation change nothing of it.
+    const double s0 = object.placement().scale;
+    ObjectDesc own = object.desc();
+    own.transform = Similarity{};
+    own.medium.sigmaT *= s0;
+    const VolumeObject ownObject(own, object.objectMesh(), object.objectBlockerMeshes());
+    SampleSet set = preprocessOwnSpace(ownObject, settings, t);
+    // The stored coefficients stay per world unit, as the runtime reads them
+    // (docs/sample-file.md, "Placement scale").
+    for (glm::vec3& v : set.scattering) v /= float(s0);
+    for (glm::vec3& v : set.extinction) v /= float(s0);
+    set.parameters.placementScale = float(s0);
     return set;
 }
 

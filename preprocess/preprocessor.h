@@ -41,7 +41,9 @@ struct PreprocessTimings {
     double total() const { return layers + firstMoments + divergence + poissonDisk + projection; }
 };
 
-// In the object's own space: object must not be placed (withoutTransforms, core/scene.h).
+// The samples live in the object's own space and serve every rotation and
+// translation; a placed object is sampled at its placement's scale, its
+// optical size (SampleParameters::placementScale, docs/sample-file.md).
 SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings& settings,
                            PreprocessTimings* timings = nullptr);
 

@@ -9,6 +9,7 @@
 #include "runtime/internal/refracted_view.h"
 #include "runtime/internal/sample_packing.h"
 #include "runtime/offscreen_frame.h"
+#include "runtime/preprocessed_size.h"
 #include "runtime/scattering_renderer.h"
 
 namespace lucent {
@@ -188,6 +189,8 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
         }
         if (!scene.hasSamples()) continue;
         const SampleParameters& p = scene.samples[i].parameters;
+        std::string size = preprocessedSizeLimitation(name, o.placement().scale, p);
+        if (!size.empty()) out.push_back(std::move(size));
         if (p.scheme == SampleScheme::Lucent &&
             (p.widthFactor < 0.5f * kMeasuredWidthFactors[0] || p.widthFactor > 2.0f * kMeasuredWidthFactors[1]))
             out.push_back("object '" + name + "': Gaussians " + std::to_string(p.widthFactor) +

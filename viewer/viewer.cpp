@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -20,6 +21,7 @@
 #include "methods/method_table.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
+#include "runtime/preprocessed_size.h"
 #include "runtime/scattering_renderer.h"
 #include "runtime/ss_method.h"
 #include "viewer/scattering_grids.h"
@@ -161,6 +163,17 @@ void objectsPanel(ViewerState& state, const LoadedScene& loaded) {
     if (ImGui::SliderFloat("scale", &scale, 0.1f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic) && scale > 0.0f) {
         p.scale = scale;
         state.placementsChanged = true;
+    }
+    // The medium's scale moves the optical size as the placement's does.
+    if (loaded.hasSamples()) {
+        const std::string stale =
+            preprocessedSizeLimitation(loaded.objects[state.selected].desc().name, p.scale * state.extinctionScale,
+                                       loaded.samples[state.selected].parameters);
+        if (!stale.empty()) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.6f, 0.2f, 1.0f));
+            ImGui::TextWrapped("%s", stale.c_str());
+            ImGui::PopStyleColor();
+        }
     }
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a) {
@@ -314,11 +327,24 @@ private:
         }
         if (state_.placementsChanged) {
             for (size_t i = 0; i < state_.placements.size(); ++i) renderer_.setPlacement(i, state_.placements[i]);
+            warnStaleSizes();
             bounds_ = placedBounds(loaded_, state_.placements);
             state_.placementsChanged = false;
             grids_.invalidate();  // solved for where the objects stood
         }
         grids_.update(state_, renderer_);
+    }
+
+    // Told once each time an object's scale leaves (or re-enters) the size its samples serve.
+    void warnStaleSizes() {
+        if (!loaded_.hasSamples()) return;
+        sizeWarnings_.resize(state_.placements.size());
+        for (size_t i = 0; i < state_.placements.size(); ++i) {
+            std::string line = preprocessedSizeLimitation(loaded_.objects[i].desc().name, state_.placements[i].scale,
+                                                          loaded_.samples[i].parameters);
+            if (line != sizeWarnings_[i] && !line.empty()) std::fprintf(stderr, "lucent: warning: %s\n", line.c_str());
+            sizeWarnings_[i] = std::move(line);
+        }
     }
 
     void drawScene() {
@@ -414,7 +440,8 @@ private:
     }
 
     const ViewerOptions& options_;
-    LoadedScene& loaded_;  // the objects' ior follows the panel
+    LoadedScene& loaded_;                    // the objects' ior follows the panel
+    std::vector<std::string> sizeWarnings_;  // per object, the last told
     const std::string methodName_;
     const std::vector<std::string> script_;
     size_t scriptLine_ = 0;

@@ -11,12 +11,13 @@ void setMeshPlacement(const GlProgram& program, const Similarity& placement) {
     glProgramUniformMatrix3fv(program.id(), program.uniform("modelRotation"), 1, GL_FALSE, glm::value_ptr(rotation));
 }
 
-void setSamplePlacement(const GlProgram& program, const Similarity& placement) {
+void setSamplePlacement(const GlProgram& program, const Similarity& placement, float preprocessedScale) {
     const glm::mat3 rotation(placement.rotation);
     const glm::vec3 translation(placement.translation);
     glProgramUniformMatrix3fv(program.id(), program.uniform("modelRotation"), 1, GL_FALSE, glm::value_ptr(rotation));
     glProgramUniform3fv(program.id(), program.uniform("modelTranslation"), 1, glm::value_ptr(translation));
     glProgramUniform1f(program.id(), program.uniform("modelScale"), float(placement.scale));
+    glProgramUniform1f(program.id(), program.uniform("preprocessedScale"), preprocessedScale);
 }
 
 }  // namespace lucent

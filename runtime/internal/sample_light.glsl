@@ -17,16 +17,19 @@ uniform float extinctionScale;  // k: sigma_t and sigma_s times k, so psi become
 // The samples are the object's, in its own space; it stands scaled by modelScale,
 // rotated by modelRotation, then moved by modelTranslation (placement_uniforms.h).
 // Directions rotate into the object's space to read its SH; lengths, and so every
-// optical depth, grow by modelScale: psi becomes psi^(k modelScale).
+// optical depth, grow by modelScale. The samples were made at preprocessedScale
+// (their psi is exp(-tau) at that size, docs/sample-file.md), so psi becomes
+// psi^(k modelScale / preprocessedScale).
 uniform mat3 modelRotation;
 uniform vec3 modelTranslation;
 uniform float modelScale;
+uniform float preprocessedScale;
 
 vec3 placed(vec3 objectPoint) { return modelTranslation + modelScale * (modelRotation * objectPoint); }
 vec3 sampleCentre(int i) { return placed(samples[i].centreWidth.xyz); }
 float sampleWidth(int i) { return modelScale * samples[i].centreWidth.w; }
 vec3 toObject(vec3 worldDirection) { return worldDirection * modelRotation; }  // the transpose's product
-float attenuationExponent() { return extinctionScale * modelScale; }
+float attenuationExponent() { return extinctionScale * modelScale / preprocessedScale; }
 
 // Blocker shadows (runtime/internal/blocker_shadows.h), for samples whose psi leaves the
 // blockers out: per light j, layers 6j..6j+5 hold the distance along its rays to
@@ -107,12 +110,12 @@ float ballExitDistance(int sampleIndex, vec3 d) {
     return (root - a) / curvature;
 }
 
-// Its share of the ball's transmittance along d: the part of psi_i the SH do not hold.
+// Its share of the ball's transmittance along d at the preprocessed size: the part of psi_i the SH do not hold.
 vec3 ballTransmittance(int sampleIndex, vec3 d) {
     float share = samples[sampleIndex].region.w;
     if (samples[sampleIndex].ball.w < 0.0 || share <= 0.0) return vec3(0.0);
     float s = ballExitDistance(sampleIndex, d);
-    return s < 0.0 ? vec3(0.0) : share * exp(-samples[sampleIndex].extinction.rgb * s);
+    return s < 0.0 ? vec3(0.0) : share * exp(-samples[sampleIndex].extinction.rgb * (preprocessedScale * s));
 }
 
 // psi_i(d) per channel for a world direction d, clamped to the range a transmittance can take: the

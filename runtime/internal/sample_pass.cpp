@@ -240,8 +240,9 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         const GlProgram& received = receivedProgram(variant.tracedLight, variant.refracted);
         if (variant.refracted) o.refractedView.bind(gpu::kUnitRefractedRays);
         setFrameUniforms(p, frame);
-        setSamplePlacement(p, o.placement);
-        setSamplePlacement(received, o.placement);
+        const float preprocessedScale = o.samples->parameters().placementScale;
+        setSamplePlacement(p, o.placement, preprocessedScale);
+        setSamplePlacement(received, o.placement, preprocessedScale);
         const glm::vec3 objectCamera(o.placement.inversePoint(Vec3(frame.view.cameraPosition)));
         const glm::mat3 viewToObject(glm::transpose(o.placement.rotation) * viewToWorld / o.placement.scale);
         glProgramUniform3fv(p.id(), p.uniform("objectCamera"), 1, glm::value_ptr(objectCamera));

@@ -152,7 +152,7 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     s.channels = 3;
     s.sceneFingerprint = 0x0123456789abcdefull;
     s.bounds = Bounds3{Vec3(-1, -2, -3), Vec3(4, 5, 6)};
-    s.parameters = SampleParameters{77, 32, 128, 9, 0.125f, 0.5f, 1.5f, 1e-3f, SampleScheme::Published, 1};
+    s.parameters = SampleParameters{77, 32, 128, 9, 0.125f, 0.5f, 1.5f, 1e-3f, SampleScheme::Published, 1, 0.25f};
     s.positions = {{1, 2, 3}};
     s.radii = {0.25f};
     s.widths = {0.75f};
@@ -168,7 +168,7 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     writeSampleFile(dir.path() / "s.lsf", s);
     const std::vector<char> b = bytesOf(dir.path() / "s.lsf");
     EXPECT_EQ(std::string(b.data(), 8), "LUCENTSF");
-    EXPECT_EQ(at<uint32_t>(b, 8), 6u);
+    EXPECT_EQ(at<uint32_t>(b, 8), 7u);
     EXPECT_EQ(at<uint64_t>(b, 12), 1u);
     EXPECT_EQ(at<uint32_t>(b, 20), 2u);
     EXPECT_EQ(at<uint32_t>(b, 24), 3u);
@@ -185,8 +185,9 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     EXPECT_EQ(at<float>(b, 92), 1e-3f);
     EXPECT_EQ(at<uint32_t>(b, 96), 1u);
     EXPECT_EQ(at<uint32_t>(b, 100), 1u);
+    EXPECT_EQ(at<float>(b, 104), 0.25f);
     // The arrays follow in the documented order, N = 1.
-    size_t o = 104;
+    size_t o = 108;
     EXPECT_EQ(at<float>(b, o + 8), 3.0f);  // position z
     o += 12;
     EXPECT_EQ(at<float>(b, o), 0.25f);  // radius

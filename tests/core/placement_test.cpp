@@ -180,18 +180,31 @@ TEST(Placement, TheReferenceSeesThePlacedObject) {
     EXPECT_LT(e.relativeRmse, 10.0 * settings.tolerance);
 }
 
-TEST(Placement, PreprocessingRefusesAPlacedObject) {
+// A placed object is sampled in its own space at its placement's scale: the
+// samples of the sphere placed at 2 (sigma_t 1) are those of the sphere with
+// sigma_t 2 in its own space, their coefficients per world unit; rotation and
+// translation play no part.
+TEST(Placement, PreprocessingSamplesAPlacedObjectAtItsScale) {
     ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 1.0);
-    o.transform = makeSimilarity(2.0, Vec3(0, 0, 1), 0.0, Vec3(0.0));
+    o.transform = makeSimilarity(2.0, Vec3(0, 0, 1), 40.0, Vec3(3.0, 0.0, 0.0));
     std::vector<std::string> warnings;
     const VolumeObject placed(o, warnings);
     EXPECT_TRUE(placed.placed());
     EXPECT_EQ(placed.objectMesh().bounds().max, loadClosedMesh(o.mesh, warnings).bounds().max);
-    try {
-        preprocessObject(placed, qualityPreset("draft"));
-        FAIL() << "a placed object was preprocessed";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("without its transform"), std::string::npos) << e.what();
+    const SampleSet fromPlaced = preprocessObject(placed, qualityPreset("draft"));
+    ObjectDesc denser = o;
+    denser.transform = Similarity{};
+    denser.medium.sigmaT = Rgb(2.0);
+    const SampleSet own = preprocessObject(VolumeObject(denser, warnings), qualityPreset("draft"));
+    EXPECT_EQ(fromPlaced.parameters.placementScale, 2.0f);
+    EXPECT_EQ(own.parameters.placementScale, 1.0f);
+    ASSERT_EQ(fromPlaced.size(), own.size());
+    ASSERT_GT(own.size(), 100u);
+    EXPECT_EQ(fromPlaced.positions, own.positions);
+    EXPECT_EQ(fromPlaced.coefficients(), own.coefficients());
+    for (size_t i = 0; i < own.size(); i += 97) {
+        EXPECT_FLOAT_EQ(fromPlaced.extinction[i].g, 1.0f);
+        EXPECT_FLOAT_EQ(fromPlaced.scattering[i].g, 0.5f * own.scattering[i].g);
     }
     SceneDesc scene;
     scene.objects = {o};

@@ -62,10 +62,12 @@ std::string readError(const std::filesystem::path& file) {
 
 TEST(SampleFile, RoundTrips) {
     test::ScratchDir dir;
-    const SampleSet s = makeSamples(7);
+    SampleSet s = makeSamples(7);
+    s.parameters.placementScale = 0.025f;
     writeSampleFile(dir.path() / "s.lsf", s);
     const SampleSet r = readSampleFile(dir.path() / "s.lsf");
     EXPECT_EQ(r.size(), 7u);
+    EXPECT_EQ(r.parameters.placementScale, 0.025f);
     EXPECT_EQ(r.shOrder, 3u);
     EXPECT_EQ(r.channels, 3u);
     EXPECT_EQ(r.sceneFingerprint, 0x1234u);
@@ -247,8 +249,10 @@ TEST(SampleFile, RejectsOutOfRangeHeaderFields) {
     uint32_t bits;
     std::memcpy(&bits, &negative, 4);
     EXPECT_NE(patched(84, bits).find("negative or non-finite parameter"), std::string::npos);
+    EXPECT_NE(patched(104, bits).find("placement scale that is not positive"), std::string::npos);
+    EXPECT_NE(patched(104, 0).find("placement scale that is not positive"), std::string::npos);
     // The first sample's width: after positions (3N floats) and radii (N).
-    EXPECT_NE(patched(104 + 4 * (3 * 2 + 2), 0).find("sample 0 has a non-positive width"), std::string::npos);
+    EXPECT_NE(patched(108 + 4 * (3 * 2 + 2), 0).find("sample 0 has a non-positive width"), std::string::npos);
     EXPECT_EQ(patched(20, 3), "no error");  // the unchanged value reads back: the patching itself is sound
 }
 
