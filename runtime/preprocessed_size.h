@@ -10,8 +10,8 @@
 
 namespace lucent {
 
-// The ratio drawn / preprocessed within which stale samples stay as close to
-// the reference as fresh ones (within 0.7 points of relative RMSE): measured
+// The ratio drawn / preprocessed within which stale samples are never more
+// than 0.6 points of relative RMSE worse than fresh ones: measured
 // on the sphere and the bunny drawn at 0.05 to 16 times the size their samples
 // were made for, and on a thick sphere at 1/8 to 1/2 (docs/runtime.md, "Placement").
 inline constexpr double kServedSizeRatio = 4.0;
