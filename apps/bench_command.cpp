@@ -4,6 +4,7 @@
 #include "apps/commands.h"
 #include "core/run_program.h"
 #include "bench/accuracy_sweep.h"
+#include "bench/cad_solids.h"
 #include "bench/cgal_demo_meshes.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -13,7 +14,7 @@ namespace lucent {
 
 Command addBenchCommand(CLI::App& app) {
     struct Options {
-        std::vector<std::string> scenes, knobs, cgal;
+        std::vector<std::string> scenes, knobs, cgal, scad;
         double opticalRadius = 1.0;
         std::string output = "bench-accuracy", backend, quality = "default", record;
         int size = 0, frames = 7;
@@ -32,8 +33,12 @@ Command addBenchCommand(CLI::App& app) {
                     "Meshes of CGAL's demo data (Debian's libcgal-demo), each in a scene made for it: elephant, "
                     "eight, fandisk, ...")
         ->delimiter(',');
+    sub->add_option("--scad", o->scad,
+                    "OpenSCAD models (.scad, for example models/cad/*.scad), exported to closed meshes by openscad, "
+                    "each in a scene made for it as the --cgal meshes are")
+        ->delimiter(',');
     sub->add_option("--optical-radius", o->opticalRadius,
-                    "sigma_t times the smallest half-extent of each --cgal mesh's box (default 1)")
+                    "sigma_t times the smallest half-extent of each --cgal or --scad mesh's box (default 1)")
         ->check(finiteRange(1e-3, 1e3));
     sub->add_option("-o,--output", o->output, "Directory for accuracy.csv and the plots");
     std::string knobHelp = "Knobs to sweep (default all):";
@@ -61,12 +66,14 @@ Command addBenchCommand(CLI::App& app) {
         if (!o->record.empty()) checkWritable(o->record);
         std::vector<std::filesystem::path> scenes(o->scenes.begin(), o->scenes.end());
         std::filesystem::create_directories(o->output);
-        for (const std::string& name : o->cgal) {
-            const std::filesystem::path dir = std::filesystem::path(o->output) / "cgal";
-            scenes.push_back(
-                writeMeshScene(extractCgalDemoMesh(name, dir), dir, o->opticalRadius, o->size > 0 ? o->size : 256));
-        }
-        if (scenes.empty()) throw Error("lucent bench accuracy: give scene files, --cgal meshes, or both");
+        const std::filesystem::path cgalDir = std::filesystem::path(o->output) / "cgal",
+                                    cadDir = std::filesystem::path(o->output) / "cad";
+        auto addMeshScene = [&](const std::filesystem::path& mesh) {
+            scenes.push_back(writeMeshScene(mesh, mesh.parent_path(), o->opticalRadius, o->size > 0 ? o->size : 256));
+        };
+        for (const std::string& name : o->cgal) addMeshScene(extractCgalDemoMesh(name, cgalDir));
+        for (const std::string& model : o->scad) addMeshScene(exportScadSolid(model, cadDir));
+        if (scenes.empty()) throw Error("lucent bench accuracy: give scene files, --cgal meshes or --scad models");
         const std::filesystem::path csv = std::filesystem::path(o->output) / "accuracy.csv";
         const std::vector<SweepRow> rows = runAccuracyBench(scenes, options, csv);
         std::fprintf(stderr, "lucent: wrote %s\n", csv.string().c_str());

@@ -37,6 +37,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo clang-format
   # the plots of lucent bench accuracy
   python3-matplotlib
+  # the CAD test solids: models/cad/*.scad are exported to closed STL meshes
+  openscad
 )
 if [ "$peer" -eq 1 ]; then packages+=(blender); fi
 
