@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -65,6 +66,17 @@ Command addInfoCommand(CLI::App& app) {
                 curvature.add(s.boundary[i].curvature);
             }
         }
+        // Thin parts widen a Gaussian beyond FWHM = widthFactor * radius (thesis 3.3.2; docs/accuracy.md, Thin parts).
+        size_t widened = 0;
+        double mostWidening = 1.0;
+        for (size_t i = 0; i < s.size(); ++i) {
+            const double widening = s.widths[i] * 2.0 * std::sqrt(2.0 * std::log(2.0)) / (p.widthFactor * s.radii[i]);
+            widened += widening > 1.01;
+            mostWidening = std::max(mostWidening, widening);
+        }
+        if (p.scheme == SampleScheme::Lucent)
+            std::printf("  widened in thin parts  %zu of %zu samples (%.1f%%), up to %.2f times\n", widened, s.size(),
+                        s.size() ? 100.0 * double(widened) / double(s.size()) : 0.0, mostWidening);
         radius.print("Poisson radius");
         width.print("Gaussian sigma");
         sigmaS.print("w sigma_s (green)");

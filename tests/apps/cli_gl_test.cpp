@@ -567,6 +567,8 @@ TEST(Cli, PreprocessThenInfo) {
     ASSERT_TRUE(std::filesystem::exists(dir.path() / "out.lsf"));
     const auto info = test::runLucent("info " + (dir.path() / "out.lsf").string());
     EXPECT_EQ(info.exitCode, 0) << info.stderrText;
+    // A sphere of radius 1 is far more than 5.5 Poisson radii across: no Gaussian widens.
+    EXPECT_NE(info.stdoutText.find("widened in thin parts  0 of"), std::string::npos) << info.stdoutText;
     const auto render = test::runLucent("render " + sceneFile.string() + " -o " + (dir.path() / "r.pfm").string() +
                                         " --width 8 --height 8 --method reference");
     EXPECT_EQ(render.exitCode, 0) << render.stderrText;
@@ -593,6 +595,14 @@ TEST(Cli, PreprocessAndInfoAgreeOnTheLayerCount) {
     const int recorded = std::atoi(info.stdoutText.c_str() + info.stdoutText.find_first_not_of(' ', infoAt + 6));
     EXPECT_GT(recorded, 0) << info.stdoutText;
     EXPECT_EQ(printed, recorded) << run.stderrText << info.stdoutText;
+    // 0.1 thick is under 5.5 Poisson radii (docs/accuracy.md, Thin parts): every Gaussian whose nearest
+    // boundary is a face of the plate widens. Those nearer a side may not: they lie within 0.05 of the rim,
+    // (4 - 1.9^2) / 4 = 9.75% of the plate.
+    const double radius = std::atof(info.stdoutText.c_str() + info.stdoutText.find("mean Poisson radius") + 19);
+    ASSERT_GT(5.5 * radius, 0.1) << info.stdoutText;
+    const int widened = numberAfter(info.stdoutText, "widened in thin parts  ");
+    EXPECT_GE(widened, 0.9 * numberAfter(info.stdoutText, "samples")) << info.stdoutText;
+    EXPECT_LE(widened, numberAfter(info.stdoutText, "samples")) << info.stdoutText;
 }
 
 }  // namespace
