@@ -14,14 +14,17 @@ std::filesystem::path exportScadSolid(const std::filesystem::path& scad, const s
     regularFileSize(scad, "OpenSCAD model");
     std::filesystem::create_directories(dir);
     const std::string stem = scad.stem().string();
-    const std::filesystem::path out = dir / (stem + ".stl");
+    // Absolute paths begin with '/', so that openscad never reads a path as one of its options.
+    const std::filesystem::path model = std::filesystem::absolute(scad),
+                                out = std::filesystem::absolute(dir / (stem + ".stl"));
     // openscad picks the format by the extension, so the partial file ends in .stl too.
-    const std::filesystem::path partial = dir / (stem + ".partial.stl"), log = dir / (stem + ".openscad.log");
+    const std::filesystem::path partial = std::filesystem::absolute(dir / (stem + ".partial.stl")),
+                                log = dir / (stem + ".openscad.log");
     int status = 0;
     try {
-        status = runProgram({"openscad", "-q", "-o", partial.string(), scad.string()}, log);
-    } catch (const Error&) {
-        throw Error(scad.string(), "cannot run openscad (scripts/install-deps.sh installs it)");
+        status = runProgram({"openscad", "-q", "-o", partial.string(), model.string()}, log);
+    } catch (const Error& e) {
+        throw Error(scad.string(), std::string("openscad: ") + e.what() + " (scripts/install-deps.sh installs it)");
     }
     if (status != 0) {
         std::error_code ignored;
