@@ -183,8 +183,9 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     const double area = glm::length(glm::cross(onPlane(*side1) - p0, onPlane(*side2) - p0));
     if (!(area > 0.0)) return std::nullopt;
     const double transmitted = 1.0 - fresnelReflectance(centre->cosine, 1.0 / o.desc().medium.ior);
-    // power: the point light's intensity, or the directional light's irradiance (core/scene.h).
-    const Rgb irradiance = light.power * (transmitted * step * step / area);
+    // power: the point light's intensity, or the directional light's irradiance (core/scene.h);
+    // a spot's cone along the way the light leaves it.
+    const Rgb irradiance = light.power * (transmitted * spotFalloff(light, emitted) * step * step / area);
     return RefractedArrival{glm::normalize(y - x), solved->inside, irradiance, y, toLight, distance};
 }
 

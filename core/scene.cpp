@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <optional>
 #include <set>
@@ -39,12 +40,25 @@ Light parseLight(Node n) {
         l.type = Light::Type::Point;
         l.position = n.child("position").point();
         l.power = n.child("intensity").rgb(0.0, kMaxMagnitude);
+    } else if (type == "spot") {
+        l.type = Light::Type::Point;
+        l.position = n.child("position").point();
+        l.power = n.child("intensity").rgb(0.0, kMaxMagnitude);
+        SpotCone cone;
+        cone.axis = n.child("direction").direction();
+        if (n.has("outer_angle")) cone.outerDegrees = n.child("outer_angle").number(1e-3, 90.0);
+        if (n.has("inner_angle")) {
+            Node inner = n.child("inner_angle");
+            cone.innerDegrees = inner.number(0.0, 90.0);
+            if (!(cone.innerDegrees < cone.outerDegrees)) inner.fail("must be less than outer_angle");
+        }
+        l.spot = cone;
     } else if (type == "directional") {
         l.type = Light::Type::Directional;
         l.direction = n.child("direction").direction();
         l.power = n.child("irradiance").rgb(0.0, kMaxMagnitude);
     } else {
-        n.child("type").fail("unknown light type '" + type + "' (expected point or directional)");
+        n.child("type").fail("unknown light type '" + type + "' (expected point, spot or directional)");
     }
     n.rejectUnknownKeys();
     return l;
@@ -218,6 +232,21 @@ RenderDesc parseRender(Node n) {
 }
 
 }  // namespace
+
+glm::dvec4 spotCoefficients(const Light& light) {
+    if (!light.spot) return glm::dvec4(0.0, 0.0, 0.0, 1.0);
+    const double cosInner = std::cos(glm::radians(light.spot->innerDegrees));
+    const double cosOuter = std::cos(glm::radians(light.spot->outerDegrees));
+    const double scale = 1.0 / std::max(0.001, cosInner - cosOuter);
+    return glm::dvec4(scale * light.spot->axis, -cosOuter * scale);
+}
+
+double spotFalloff(const Light& light, const Vec3& w) {
+    if (!light.spot) return 1.0;
+    const glm::dvec4 c = spotCoefficients(light);
+    const double ramp = std::clamp(glm::dot(Vec3(c), w) + c.w, 0.0, 1.0);
+    return ramp * ramp;
+}
 
 SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file) {
     const std::string name = file.string();

@@ -18,13 +18,34 @@ struct Camera {
     int width = 512, height = 512;
 };
 
+// A spot light's cone, as KHR_lights_punctual defines it: full intensity within
+// the inner angle of the axis, none beyond the outer one, and between them the
+// square of a ramp linear in the cosine (spotFalloff).
+struct SpotCone {
+    Vec3 axis{0, 0, -1};         // unit direction the spot points in
+    double innerDegrees = 0.0;   // [0, outerDegrees)
+    double outerDegrees = 45.0;  // (innerDegrees, 90]
+};
+
+// A spot light is a point light with a cone: every method treats it as a point
+// light whose intensity spotFalloff scales along each direction it sends light.
 struct Light {
     enum class Type { Point, Directional };
     Type type = Type::Point;
-    Vec3 position{0};   // point lights
-    Vec3 direction{0};  // directional lights: unit direction the light travels in
-    Rgb power{0};       // intensity (W/sr) for point lights, irradiance (W/m^2) for directional
+    Vec3 position{0};              // point lights
+    Vec3 direction{0};             // directional lights: unit direction the light travels in
+    Rgb power{0};                  // intensity (W/sr) for point lights, irradiance (W/m^2) for directional
+    std::optional<SpotCone> spot;  // point lights only
 };
+
+// The cone's falloff as one affine step, (axis / (cos inner - cos outer),
+// -cos outer / (cos inner - cos outer)), so that falloff = clamp(c.xyz . w + c.w, 0, 1)^2
+// for w the unit direction the light travels; (0, 0, 0, 1) (falloff 1) without a
+// cone. The shaders and kernels take these four numbers (KHR_lights_punctual's
+// lightAngleScale and lightAngleOffset, with its floor of 0.001 on the difference).
+glm::dvec4 spotCoefficients(const Light& light);
+// The share of a point light's intensity it sends along the unit direction w (1 without a cone).
+double spotFalloff(const Light& light, const Vec3& w);
 
 struct SurfaceDesc {
     Rgb diffuse{0.8}, specular{0.1};

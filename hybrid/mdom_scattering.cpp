@@ -217,15 +217,17 @@ public:
         kernel_.setArg(2, opaque_);
         kernel_.setArg(3, scaledOut_);
         kernel_.setArg(4, trueOut_);
-        kernel_.setArg(7, float4Of(shape.origin, 0.0));
-        kernel_.setArg(8, float(shape.voxel));
-        kernel_.setArg(9, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
+        kernel_.setArg(8, float4Of(shape.origin, 0.0));
+        kernel_.setArg(9, float(shape.voxel));
+        kernel_.setArg(10, cl_int4{{shape.dims[0], shape.dims[1], shape.dims[2], 0}});
     }
 
     LightArrival of(const Light& light) {
         const bool point = light.type == Light::Type::Point;
         kernel_.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
         kernel_.setArg(6, float4Of(light.power, 0.0));
+        const glm::dvec4 cone = spotCoefficients(light);
+        kernel_.setArg(7, float4Of(Vec3(cone), cone.w));
         queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(voxels_));
         LightArrival a{std::vector<glm::vec4>(voxels_), std::vector<glm::vec4>(voxels_), {}};
         queue_.enqueueReadBuffer(scaledOut_, CL_TRUE, 0, voxels_ * sizeof(glm::vec4), a.scaled.data());

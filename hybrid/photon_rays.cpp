@@ -58,9 +58,11 @@ RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int co
                 clshared::PhotonRay ray{};
                 ray.position = {{float(start.x), float(start.y), float(start.z), 1.0f}};
                 ray.velocity = {{float(dir.x), float(dir.y), float(dir.z), 0.0f}};  // n = 1 outside
-                ray.power = {{float(power.r), float(power.g), float(power.b), 0.0f}};
+                const Rgb sent = power * spotFalloff(light, dir);
+                if (std::max({sent.r, sent.g, sent.b}) <= 0.0) continue;  // outside a spot's cone
+                ray.power = {{float(sent.r), float(sent.g), float(sent.b), 0.0f}};
                 map.rays.push_back(ray);
-                map.emitted += power;
+                map.emitted += sent;
             }
     }
     return map;

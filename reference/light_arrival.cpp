@@ -12,7 +12,7 @@ std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x) {
         a.distance = glm::length(a.toLight);
         if (a.distance == 0.0) return std::nullopt;
         a.toLight /= a.distance;
-        a.irradiance = light.power / (a.distance * a.distance);
+        a.irradiance = light.power * (spotFalloff(light, -a.toLight) / (a.distance * a.distance));
     } else {
         a.toLight = -light.direction;
         a.distance = kInfinity;

@@ -14,13 +14,14 @@ Rgb phongSurfaceReflection(const SurfaceDesc& s, const std::vector<Light>& light
         const double d2 = light.type == Light::Type::Point ? glm::dot(toLight, toLight) : 1.0;
         if (d2 == 0.0) continue;
         toLight = glm::normalize(toLight);
+        const double cone = spotFalloff(light, -toLight);
         const double cosI = glm::dot(n, toLight);
         if (cosI <= 0.0) continue;
         const Vec3 reflected = 2.0 * cosI * n - toLight;
         const double cosR = std::max(0.0, glm::dot(reflected, toEye));
         // Energy-normalised Phong BRDF times irradiance.
         const Rgb brdf = s.diffuse / kPi + s.specular * (s.shininess + 2.0) / (2.0 * kPi) * std::pow(cosR, s.shininess);
-        sum += brdf * light.power / d2 * cosI;
+        sum += brdf * light.power * (cone / d2 * cosI);
     }
     return sum;
 }

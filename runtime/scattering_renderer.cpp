@@ -169,10 +169,9 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     std::vector<gpu::Light> packed;
     packed.reserve(kMaxLights);
     for (const Light& l : lights) {
-        if (l.type == Light::Type::Point)
-            packed.push_back({glm::vec4(glm::vec3(l.position), 1.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
-        else
-            packed.push_back({glm::vec4(glm::vec3(l.direction), 0.0f), glm::vec4(glm::vec3(l.power), 0.0f)});
+        const bool point = l.type == Light::Type::Point;
+        packed.push_back({glm::vec4(glm::vec3(point ? l.position : l.direction), point ? 1.0f : 0.0f),
+                          glm::vec4(glm::vec3(l.power), 0.0f), glm::vec4(spotCoefficients(l))});
     }
     GpuLights& g = impl_->lights;
     if (g.buffer) glDeleteBuffers(1, &g.buffer);

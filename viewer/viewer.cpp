@@ -88,12 +88,33 @@ std::vector<std::string> readScript(const std::filesystem::path& file) {
     return lines;
 }
 
+// A spot's aim and cone; true when any changed.
+bool spotControls(SpotCone& cone) {
+    glm::vec3 axis(cone.axis);
+    bool changed = false;
+    if (ImGui::DragFloat3("aim", glm::value_ptr(axis), 0.02f) && glm::length(axis) > 0.0f) {
+        cone.axis = glm::normalize(Vec3(axis));
+        changed = true;
+    }
+    float inner = float(cone.innerDegrees), outer = float(cone.outerDegrees);
+    if (ImGui::SliderFloat("outer angle", &outer, 1.0f, 90.0f, "%.1f deg")) {
+        cone.outerDegrees = outer;
+        cone.innerDegrees = std::min(cone.innerDegrees, 0.99 * cone.outerDegrees);
+        changed = true;
+    }
+    if (ImGui::SliderFloat("inner angle", &inner, 0.0f, outer, "%.1f deg")) {
+        cone.innerDegrees = std::min(double(inner), 0.99 * cone.outerDegrees);
+        changed = true;
+    }
+    return changed;
+}
+
 void lightsPanel(ViewerState& state) {
     for (size_t i = 0; i < state.lights.size(); ++i) {
         Light& light = state.lights[i];
         ImGui::PushID(int(i));
         const bool point = light.type == Light::Type::Point;
-        ImGui::Text("%s light %zu", point ? "point" : "directional", i);
+        ImGui::Text("%s light %zu", light.spot ? "spot" : point ? "point" : "directional", i);
         glm::vec3 position(point ? light.position : light.direction);
         glm::vec3 power(light.power);
         if (ImGui::DragFloat3(point ? "position" : "direction", glm::value_ptr(position), 0.02f)) {
@@ -103,6 +124,7 @@ void lightsPanel(ViewerState& state) {
                 light.direction = glm::normalize(Vec3(position));
             state.lightsChanged = true;
         }
+        if (light.spot) state.lightsChanged |= spotControls(*light.spot);
         float peak = std::max({power.r, power.g, power.b, 1e-6f});
         glm::vec3 colour = power / peak;
         bool changed = ImGui::ColorEdit3("colour", glm::value_ptr(colour));
@@ -124,6 +146,16 @@ void lightsPanel(ViewerState& state) {
         Light l;
         l.position = state.camera.camera().position;
         l.power = Rgb(10.0);
+        state.lights.push_back(l);
+        state.lightsChanged = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("add spot light")) {
+        // From the camera, aimed where it looks.
+        Light l;
+        l.position = state.camera.camera().position;
+        l.power = Rgb(10.0);
+        l.spot = SpotCone{glm::normalize(state.camera.camera().target - l.position), 15.0, 25.0};
         state.lights.push_back(l);
         state.lightsChanged = true;
     }

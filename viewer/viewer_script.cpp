@@ -48,6 +48,15 @@ double readPositive(std::istringstream& in, const std::string& where, const char
     return v;
 }
 
+// INNER OUTER in degrees, as the scene file's spot keys take them.
+SpotCone readCone(std::istringstream& in, const std::string& where, const Vec3& axis) {
+    double inner, outer;
+    if (!(in >> inner >> outer) || !std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0 || !(inner < outer) ||
+        !(outer <= 90.0))
+        throw Error(where, "a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90");
+    return SpotCone{axis, inner, outer};
+}
+
 Light& lightAt(ViewerState& state, std::istringstream& in, const std::string& where) {
     size_t index;
     if (!(in >> index) || index >= state.lights.size())
@@ -93,12 +102,16 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         in >> what;
         if (what == "position")
             light.position = readVec3(in, where, "position");
+        else if (what == "direction" && light.spot)
+            light.spot->axis = readDirection(in, where);
         else if (what == "direction")
             light.direction = readDirection(in, where);
+        else if (what == "cone" && light.spot)
+            light.spot = readCone(in, where, light.spot->axis);
         else if (what == "colour" || what == "color")
             light.power = readColour(in, where);
         else
-            throw Error(where, "light property must be position, direction or colour");
+            throw Error(where, "light property must be position, direction, colour or (a spot's) cone");
         state.lightsChanged = true;
     } else if (command == "add") {
         std::string type;
@@ -106,11 +119,15 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         Light light;
         if (type == "point") {
             light.position = readVec3(in, where, "position");
+        } else if (type == "spot") {
+            light.position = readVec3(in, where, "position");
+            const Vec3 axis = readDirection(in, where);
+            light.spot = readCone(in, where, axis);
         } else if (type == "directional") {
             light.type = Light::Type::Directional;
             light.direction = readDirection(in, where);
         } else {
-            throw Error(where, "add needs point or directional");
+            throw Error(where, "add needs point, spot or directional");
         }
         light.power = readColour(in, where);
         if (state.lights.size() >= kMaxLights)

@@ -10,6 +10,7 @@ kernel void dom_uncollided(global const float4* scaledExtinction, global const f
                            global const int* opaque, global float4* scaledOut, global float4* trueOut,
                            float4 light,   // xyz: position (w = 1) or travel direction (w = 0)
                            float4 power,   // W/sr (point) or W/m^2 (directional)
+                           float4 spot,    // a spot's cone (core/scene.h, spotCoefficients); else (0, 0, 0, 1)
                            float4 origin, float voxel, int4 dims) {
     const int v = get_global_id(0);
     const int i = v % dims.x, j = (v / dims.x) % dims.y, k = v / (dims.x * dims.y);
@@ -44,7 +45,8 @@ kernel void dom_uncollided(global const float4* scaledExtinction, global const f
         tauScaled += scaledExtinction[at] * dt;
         tauTrue += trueExtinction[at] * dt;
     }
-    const float falloff = light.w > 0.5f ? 1.0f / (distance * distance) : 1.0f;
+    const float ramp = clamp(dot(spot.xyz, -toLight) + spot.w, 0.0f, 1.0f);
+    const float falloff = light.w > 0.5f ? ramp * ramp / (distance * distance) : 1.0f;
     scaledOut[v] = power * falloff * exp(-tauScaled);
     trueOut[v] = power * falloff * exp(-tauTrue);
 }

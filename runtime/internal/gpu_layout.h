@@ -41,12 +41,13 @@ LUCENT_GPU_CONSTANT(kRefractedStretches, 2)
 // Point-sprite proxies (scatter.geom, POINT_PROXIES) cover a box in up to this
 // many points along each screen axis.
 LUCENT_GPU_CONSTANT(kPointProxyTiles, 4)
-// The lights' uniform block holds this many: core/limits.h's kMaxLights (8 KiB).
+// The lights' uniform block holds this many: core/limits.h's kMaxLights (12 KiB).
 LUCENT_GPU_CONSTANT(kMaxLights, 256)
 
 struct Light {
     vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel
     vec4 power;     // rgb: intensity (W/sr) or irradiance (W/m^2)
+    vec4 spot;      // a spot's cone as core/scene.h's spotCoefficients; (0, 0, 0, 1) for any other light
 };
 
 struct Sample {
@@ -66,7 +67,7 @@ struct Received {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(Light) == 2 * sizeof(vec4));
+static_assert(sizeof(Light) == 3 * sizeof(vec4));
 static_assert(sizeof(Sample) == 6 * sizeof(vec4));
 static_assert(sizeof(Received) == 3 * sizeof(vec4));
 }  // namespace lucent::gpu

@@ -36,8 +36,8 @@ void main() {
             toLight = lights[j].position.xyz - worldPosition;
             float d2 = dot(toLight, toLight);
             if (d2 <= 0.0) continue;
-            falloff = 1.0 / d2;
             toLight *= inversesqrt(d2);
+            falloff = spotFalloff(j, -toLight) / d2;
         } else {
             toLight = -lights[j].position.xyz;
         }

@@ -212,6 +212,7 @@ Received receivedLight(int i, vec3 toCamera) {
             irradiance /= d2;
             inverseDistance = inversesqrt(d2);
             toLight = length(toLight) > 0.0 ? normalize(toLight) : vec3(0.0, 0.0, 1.0);
+            irradiance *= spotFalloff(j, -toLight);
         } else {
             toLight = -lights[j].position.xyz;
         }

@@ -46,10 +46,9 @@ Light unitLightInOwnWorld(const Light& light, const TracedVolume& v) {
     const Similarity& own = v.volume->placement();
     Light l = light;
     l.power = Rgb(1.0);
-    if (l.type == Light::Type::Point)
-        l.position = own.point(v.placement.inversePoint(light.position));
-    else
-        l.direction = own.direction(v.placement.inverseDirection(light.direction));
+    if (l.type == Light::Type::Point) l.position = own.point(v.placement.inversePoint(light.position));
+    if (l.spot) l.spot->axis = glm::normalize(own.direction(v.placement.inverseDirection(light.spot->axis)));
+    if (l.type == Light::Type::Directional) l.direction = own.direction(v.placement.inverseDirection(light.direction));
     return l;
 }
 

@@ -46,7 +46,9 @@ TEST(CadSolids, EachModelExportsAClosedMeshOfItsVolume) {
         std::vector<std::string> warnings;
         const TriangleMesh mesh = loadClosedMesh(stl, warnings);
         EXPECT_GT(mesh.signedVolume(), 0.0);
-        if (solid.volume > 0.0) EXPECT_NEAR(mesh.signedVolume(), solid.volume, 1e-4 * solid.volume);
+        if (solid.volume > 0.0) {
+            EXPECT_NEAR(mesh.signedVolume(), solid.volume, 1e-4 * solid.volume);
+        }
         EXPECT_FALSE(std::filesystem::exists(dir.path() / (std::string(solid.name) + ".partial.stl")));
     }
 }

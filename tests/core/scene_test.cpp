@@ -68,7 +68,7 @@ TEST(Scene, ErrorsNameFileAndJsonPath) {
          "dir/scene.json: /objects/0/medium/sigma_t/1: must lie in"},
         {"\"albedo\": 0.75", "\"albedo\": 1.5", "dir/scene.json: /objects/0/medium/albedo: must lie in [0, 1]"},
         {"\"albedo\": 0.75,", "", "dir/scene.json: /objects/0/medium: missing required key 'albedo'"},
-        {"\"type\": \"point\"", "\"type\": \"spot\"", "dir/scene.json: /lights/0/type: unknown light type"},
+        {"\"type\": \"point\"", "\"type\": \"area\"", "dir/scene.json: /lights/0/type: unknown light type"},
         {"\"values\": [1, 2]", "\"values\": [1, -2]",
          "dir/scene.json: /objects/0/medium/density/values/1: must lie in [0, 1e+30] (got -2)"},
         {"\"direction\": [0, -2, 0]", "\"direction\": [0, 0, 0]", "/lights/1/direction: must not be the zero vector"},
@@ -79,6 +79,59 @@ TEST(Scene, ErrorsNameFileAndJsonPath) {
         const std::string message = test::sceneErrorOf(variant(c.from, c.to));
         EXPECT_NE(message.find(c.message), std::string::npos) << "got: " << message << "\nwanted: " << c.message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+    }
+}
+
+// KHR_lights_punctual's spot: a point light whose intensity falls off between two cones.
+TEST(Scene, SpotLightsParseWithKhrDefaultsAndFallOffAsKhrDefines) {
+    const SceneDesc s = parseSceneText(
+        variant("{\"type\": \"point\", \"position\": [3, 3, 3], \"intensity\": [10, 10, 10]}",
+                "{\"type\": \"spot\", \"position\": [0, 2, 0], \"direction\": [0, -3, 0], \"intensity\": 5}"),
+        "dir/scene.json");
+    const Light& spot = s.lights[0];
+    EXPECT_EQ(spot.type, Light::Type::Point);
+    ASSERT_TRUE(spot.spot.has_value());
+    EXPECT_EQ(spot.spot->axis, Vec3(0, -1, 0));
+    EXPECT_EQ(spot.spot->innerDegrees, 0.0);  // KHR's defaults: 0 and pi/4
+    EXPECT_EQ(spot.spot->outerDegrees, 45.0);
+    EXPECT_FALSE(s.lights[1].spot.has_value());
+    // The falloff at chosen angles, from KHR's definition: 1 on the axis and within the inner
+    // cone, 0 at and beyond the outer one, and ((cos a - cos o) / (cos i - cos o))^2 between.
+    Light l = spot;
+    l.spot->innerDegrees = 20.0;
+    l.spot->outerDegrees = 50.0;
+    auto at = [&](double degrees) {
+        const double a = glm::radians(degrees);
+        return spotFalloff(l, Vec3(std::sin(a), -std::cos(a), 0.0));
+    };
+    EXPECT_DOUBLE_EQ(at(0.0), 1.0);
+    EXPECT_DOUBLE_EQ(at(19.9), 1.0);
+    EXPECT_NEAR(at(50.0), 0.0, 1e-12);
+    EXPECT_EQ(at(90.0), 0.0);
+    EXPECT_EQ(at(180.0), 0.0);
+    const double halfway = std::acos(0.5 * (std::cos(glm::radians(20.0)) + std::cos(glm::radians(50.0))));
+    EXPECT_NEAR(at(glm::degrees(halfway)), 0.25, 1e-12);
+    EXPECT_EQ(spotFalloff(s.lights[1], Vec3(1, 0, 0)), 1.0);  // no cone: every direction
+    EXPECT_EQ(spotCoefficients(s.lights[1]), glm::dvec4(0, 0, 0, 1));
+}
+
+TEST(Scene, BadSpotConesAreOneErrorNamingTheKey) {
+    const std::string point = "{\"type\": \"point\", \"position\": [3, 3, 3], \"intensity\": [10, 10, 10]}";
+    const std::string spot = "{\"type\": \"spot\", \"position\": [0, 2, 0], \"intensity\": 5, ";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {spot + "\"direction\": [0, -1, 0], \"inner_angle\": 30, \"outer_angle\": 30}",
+         "/lights/0/inner_angle: must be less than outer_angle"},
+        {spot + "\"direction\": [0, -1, 0], \"inner_angle\": 50}", "/lights/0/inner_angle: must be less than"},
+        {spot + "\"direction\": [0, -1, 0], \"outer_angle\": 120}", "/lights/0/outer_angle: must lie in"},
+        {spot + "\"direction\": [0, -1, 0], \"outer_angle\": 0}", "/lights/0/outer_angle: must lie in"},
+        {spot + "\"direction\": [0, -1, 0], \"inner_angle\": -1}", "/lights/0/inner_angle: must lie in"},
+        {spot + "\"direction\": [0, 0, 0]}", "/lights/0/direction: must not be the zero vector"},
+        {spot + "\"outer_angle\": 30}", "/lights/0: missing required key 'direction'"},
+    };
+    for (const auto& [light, message] : cases) {
+        const std::string error = test::sceneErrorOf(variant(point, light));
+        EXPECT_NE(error.find(message), std::string::npos) << "got: " << error << "\nwanted: " << message;
+        EXPECT_EQ(error.find('\n'), std::string::npos);
     }
 }
 

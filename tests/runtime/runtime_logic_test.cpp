@@ -113,7 +113,8 @@ TEST(ShaderSource, MissingFileAndMissingVersionAreErrorsNamingTheShader) {
 
 TEST(GpuLayout, StructsAreTheStd430Sizes) {
     // std430 lays out a struct of vec4s as consecutive 16-byte vec4s.
-    EXPECT_EQ(sizeof(gpu::Light), 32u);
+    EXPECT_EQ(sizeof(gpu::Light), 48u);
+    EXPECT_EQ(offsetof(gpu::Light, spot), 32u);
     EXPECT_EQ(sizeof(gpu::Sample), 96u);
     EXPECT_EQ(sizeof(gpu::Received), 48u);
     EXPECT_EQ(offsetof(gpu::Sample, ball), 80u);

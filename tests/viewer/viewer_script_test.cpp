@@ -30,6 +30,18 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     ASSERT_EQ(state.lights.size(), 2u);
     EXPECT_EQ(state.lights[1].direction, Vec3(0, -1, 0));
     EXPECT_EQ(state.lights[1].power, Rgb(1, 2, 3));
+    applyScriptLine(state, "add spot 0 2 0  0 -2 0  10 30  5 5 5", "s:3");
+    ASSERT_EQ(state.lights.size(), 3u);
+    ASSERT_TRUE(state.lights[2].spot.has_value());
+    EXPECT_EQ(state.lights[2].position, Vec3(0, 2, 0));
+    EXPECT_EQ(state.lights[2].spot->axis, Vec3(0, -1, 0));
+    EXPECT_EQ(state.lights[2].spot->outerDegrees, 30.0);
+    applyScriptLine(state, "light 2 direction 1 0 0", "s:3");
+    applyScriptLine(state, "light 2 cone 0 60", "s:3");
+    EXPECT_EQ(state.lights[2].spot->axis, Vec3(1, 0, 0));
+    EXPECT_EQ(state.lights[2].spot->innerDegrees, 0.0);
+    EXPECT_EQ(state.lights[2].spot->outerDegrees, 60.0);
+    applyScriptLine(state, "remove 2", "s:4");
     applyScriptLine(state, "remove 0", "s:4");
     EXPECT_EQ(state.lights.size(), 1u);
     applyScriptLine(state, "extinction 2.5", "s:5");
@@ -98,6 +110,14 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
         {"ior 0.9", "s:1: ior needs an index in [1, 4]"},
         {"ior nan", "s:1: ior needs an index in [1, 4]"},
         {"ior", "s:1: ior needs an index in [1, 4]"},
+        {"add spot 0 2 0 0 -1 0 30 30 1 1 1",
+         "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
+        {"add spot 0 2 0 0 -1 0 10 95 1 1 1",
+         "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
+        {"add spot 0 2 0 0 -1 0 nan 20 1 1 1",
+         "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
+        {"light 0 cone 10 20", "s:1: light property must be position, direction, colour or (a spot's) cone"},
+        {"add area 0 0 0 1 1 1", "s:1: add needs point, spot or directional"},
     };
     for (const auto& [line, message] : bad) {
         ViewerState state(oneLight());
