@@ -51,13 +51,13 @@ Command addInfoCommand(CLI::App& app) {
                                                      : p.scheme == SampleScheme::OpticallyThick
                                                          ? "optically thick (the surface's closed form, no samples)"
                                                          : "lucent");
-        Stats radius, width, sigmaS, dc, error, share, curvature;
+        Stats radius, width, weight, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();
         const std::vector<float>& sh = s.coefficients();  // read from the sample file here, once
         for (size_t i = 0; i < s.size(); ++i) {
             radius.add(s.radii[i]);
             width.add(s.widths[i]);
-            sigmaS.add(s.scattering[i].g);  // times the sample's weight
+            weight.add(s.weights[i]);
             // Y_00 = 1 / (2 sqrt(pi)): the mean over directions of what the SH hold is c_00 / (2 sqrt(pi)).
             dc.add(sh[i * stride] / (2.0 * std::sqrt(3.14159265358979323846)));
             error.add(s.truncationError[i]);
@@ -79,7 +79,7 @@ Command addInfoCommand(CLI::App& app) {
                         s.size() ? 100.0 * double(widened) / double(s.size()) : 0.0, mostWidening);
         radius.print("Poisson radius");
         width.print("Gaussian sigma");
-        sigmaS.print("w sigma_s (green)");
+        weight.print("weight w");
         dc.print("SH mean");
         share.print("boundary ball share");
         curvature.print("boundary curvature");

@@ -145,7 +145,7 @@ void writeSampleFile(const std::filesystem::path& file, const SampleSet& s) {
     w.putArray(s.positions);
     w.putArray(s.radii);
     w.putArray(s.widths);
-    w.putArray(s.scattering);
+    w.putArray(s.weights);
     w.putArray(s.extinction);
     w.putArray(s.region);
     w.putArray(s.image);
@@ -268,7 +268,7 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     if (!(std::isfinite(p.placementScale) && p.placementScale > 0.0f))
         throw Error(name, "sample file header holds a placement scale that is not positive and finite");
     // The counts fix the size: check it before allocating anything they claim.
-    const uint64_t perSample = sizeof(glm::vec3) * 4 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 3 +
+    const uint64_t perSample = sizeof(glm::vec3) * 3 + sizeof(glm::vec2) + sizeof(BoundaryBall) + sizeof(float) * 4 +
                                sizeof(float) * s.coefficientsPerSample();
     const uint64_t expected = r.offset() + count * perSample + 3 * sizeof(uint64_t);  // and the mesh's
     auto sizeMismatch = [&](uint64_t need, const char* atLeast) {
@@ -279,7 +279,7 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     s.positions = r.getArray<glm::vec3>(count);
     s.radii = r.getArray<float>(count);
     s.widths = r.getArray<float>(count);
-    s.scattering = r.getArray<glm::vec3>(count);
+    s.weights = r.getArray<float>(count);
     s.extinction = r.getArray<glm::vec3>(count);
     s.region = r.getArray<glm::vec2>(count);
     s.image = r.getArray<glm::vec3>(count);
@@ -312,7 +312,7 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     const uint64_t payload = r.checksum();
     const uint64_t stored = r.get<uint64_t>();
     if (payload != stored) throw Error(name, "sample file checksum does not match (corrupted)");
-    if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.scattering) ||
+    if (!allFinite(s.positions) || !allFinite(s.radii) || !allFinite(s.widths) || !allFinite(s.weights) ||
         !allFinite(s.extinction) || !allFinite(s.region) || !allFinite(s.image) || !allFinite(s.boundary) ||
         !finiteCoefficients || !allFinite(s.truncationError))
         throw Error(name, "sample file holds a non-finite value");
@@ -333,8 +333,7 @@ SampleSet parse(Reader& r, const std::string& name, const std::filesystem::path&
     for (size_t i = 0; i < count; ++i) {
         if (!(s.widths[i] > 0.0f) || !(s.radii[i] > 0.0f))
             throw Error(name, "sample " + std::to_string(i) + " has a non-positive width");
-        if (glm::any(glm::lessThan(s.scattering[i], glm::vec3(0.0f))) ||
-            glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
+        if (s.weights[i] < 0.0f || glm::any(glm::lessThan(s.extinction[i], glm::vec3(0.0f))))
             throw Error(name, "sample " + std::to_string(i) + " has a negative coefficient");
         if (!(s.region[i].x <= s.region[i].y))
             throw Error(name, "sample " + std::to_string(i) + " has an empty region");

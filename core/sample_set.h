@@ -70,9 +70,11 @@ struct SampleSet {
     SampleParameters parameters;
 
     std::vector<glm::vec3> positions;
-    std::vector<float> radii;            // Poisson-disk radius
-    std::vector<float> widths;           // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
-    std::vector<glm::vec3> scattering;   // w_i sigma_s(b_i) per channel: w_i is the partition-of-unity weight
+    std::vector<float> radii;   // Poisson-disk radius
+    std::vector<float> widths;  // Gaussian standard deviation: gamma(x) = exp(-|x-b|^2 / (2 w^2))
+    // w_i, the partition-of-unity weight: a Gaussian scatters w_i sigma_s(b_i), with sigma_s the
+    // albedo times extinction, and the albedo (and g) taken at draw time, so editing them needs no new samples.
+    std::vector<float> weights;
     std::vector<glm::vec3> extinction;   // sigma_t(b_i) per channel
     std::vector<glm::vec2> region;       // [lo, hi] of the density slab holding b_i along parameters.regionAxis
     std::vector<glm::vec3> image;        // b_i mirrored across the nearest boundary of its region
@@ -99,7 +101,7 @@ struct SampleSet {
     const std::vector<float>& coefficients() const;
 };
 
-inline constexpr uint32_t kSampleFileVersion = 7;
+inline constexpr uint32_t kSampleFileVersion = 8;
 // SH bands a sample file may hold: the most the runtime evaluates (runtime/internal/sample_light.glsl).
 inline constexpr uint32_t kMaxSampleShOrder = 8;
 

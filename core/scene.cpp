@@ -208,9 +208,12 @@ ObjectDesc parseObject(Node n, const std::filesystem::path& sceneFile, const Uni
     for (const auto& b : o.medium.blockers) fp.addFile(b);
     if (o.medium.density.type == DensityDesc::Type::Grid) fp.addFile(o.medium.density.file);
     // The samples do not depend on the boundary's index of refraction (each
-    // method refracts at draw time): one sample file serves every ior.
+    // method refracts at draw time), nor on the albedo or g (they hold the
+    // attenuation and each Gaussian's weight; the albedo and the phase function
+    // are taken at draw time): one sample file serves every ior, albedo and g.
     Json hashed = medium.json();
-    if (hashed.is_object()) hashed.erase("ior");
+    if (hashed.is_object())
+        for (const char* drawn : {"ior", "albedo", "g"}) hashed.erase(drawn);
     fp.addText(hashed.dump());
     if (medium.json().contains("preset"))
         fp.addText("units " + units.name);  // the preset's coefficients depend on them

@@ -133,6 +133,14 @@ void VolumeObject::setIor(double ior) {
     desc_.medium.ior = ior;
 }
 
+void VolumeObject::setAlbedoAndG(const Rgb& albedo, double g) {
+    for (int c = 0; c < 3; ++c)
+        if (!(albedo[c] >= 0.0 && albedo[c] <= 1.0)) throw Error(desc_.name, "albedo must lie in [0, 1]");
+    if (!(g >= -0.999 && g <= 0.999)) throw Error(desc_.name, "g must lie in [-0.999, 0.999]");
+    desc_.medium.albedo = albedo;
+    desc_.medium.g = g;
+}
+
 Rgb VolumeObject::extinction(const Vec3& p) const {
     if (!blockers_.empty() && insideBlocker(p)) return Rgb(0.0);
     return desc_.medium.sigmaT * density_->at(p);
@@ -165,10 +173,8 @@ VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const Medi
     addMesh(mesh);
     for (const TriangleMesh& b : blockers) addMesh(b);
     const DensityDesc& d = medium.density;
+    // Not the albedo, g or ior: the samples do not depend on them (as parseScene's fingerprint).
     fp.addBytes(&medium.sigmaT, sizeof medium.sigmaT);
-    fp.addBytes(&medium.albedo, sizeof medium.albedo);
-    fp.addBytes(&medium.g, sizeof medium.g);
-    fp.addBytes(&medium.ior, sizeof medium.ior);
     fp.addBytes(&d.type, sizeof d.type);
     fp.addBytes(&d.axis, sizeof d.axis);
     fp.addBytes(d.values.data(), d.values.size() * sizeof(double));

@@ -30,6 +30,9 @@ public:
     // A new refractive index for the medium, in [1, 4] (Error otherwise): the
     // boundary's optics change, nothing of the geometry does (the viewer's ior).
     void setIor(double ior);
+    // A new albedo (each channel in [0, 1]) and g (in [-0.999, 0.999]; Error otherwise): what the
+    // medium scatters and where, not its extinction (the viewer's albedo and g).
+    void setAlbedoAndG(const Rgb& albedo, double g);
     const TriangleMesh& mesh() const { return mesh_; }  // in the world
     // Object to world, and the mesh and blockers as their files give them.
     const Similarity& placement() const { return desc_.transform; }

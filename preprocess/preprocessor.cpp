@@ -265,7 +265,7 @@ void applyWeights(const VolumeObject& object, const std::vector<WeightedSample>&
         }
         if (sampledVolume > 0.0 && held > 0.0) scale = sampledVolume / held;
     }
-    for (size_t i = 0; i < weights.size(); ++i) set.scattering[i] *= float(scale * weights[i]);
+    for (size_t i = 0; i < weights.size(); ++i) set.weights[i] = float(scale * weights[i]);
 }
 
 // Thesis Algorithms 1 and 2: layers, heuristic, Poisson disks, SH projection,
@@ -378,7 +378,6 @@ SampleSet preprocessObject(const VolumeObject& object, const PreprocessSettings&
     SampleSet set = preprocessOwnSpace(ownObject, settings, t);
     // The stored coefficients stay per world unit, as the runtime reads them
     // (docs/sample-file.md, "Placement scale").
-    for (glm::vec3& v : set.scattering) v /= float(s0);
     for (glm::vec3& v : set.extinction) v /= float(s0);
     set.parameters.placementScale = float(s0);
     return set;

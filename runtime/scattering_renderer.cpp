@@ -139,6 +139,14 @@ void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, cons
     o.shadowsValid = false;
 }
 
+void ScatteringRenderer::setAlbedoAndG(size_t index, const Rgb& albedo, double g) {
+    checkIndex("setAlbedoAndG", index, impl_->objects.size());
+    GpuObject& o = impl_->objects[index];
+    o.albedo = albedo;
+    o.g = g;
+    o.samples->receivedValid = false;  // cached with the phase function of its g
+}
+
 void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement) {
     checkIndex("setPlacement", index, impl_->objects.size());
     bool finite = placement.scale > 0.0 && std::isfinite(placement.scale) && isFinite(placement.translation);

@@ -28,7 +28,7 @@ struct TranslucentObject {
     double g = 0.0;                      // Henyey-Greenstein mean cosine of the medium
     std::optional<SurfaceDesc> surface;  // reflected surface term, if any
     std::vector<const TriangleMesh*> blockers;  // opaque meshes inside: the camera's rays stop there
-    Rgb albedo{0.0};       // sigma_s / sigma_t, for optically thick objects (SampleScheme::OpticallyThick)
+    Rgb albedo{0.0};       // sigma_s / sigma_t: a sample scatters its weight times this times its extinction
     Similarity placement;  // where the mesh, blockers and samples stand in the world
     // The object's medium for tracing the light to each sample (DrawOptions::tracedLight),
     // or null: the samples' SH alone. Must outlive the renderer.
@@ -103,6 +103,8 @@ public:
     // Also after the volume's ior changed (VolumeObject::setIor): the light and
     // the view through its boundary are traced again.
     void setSamples(size_t index, const SampleSet& samples, const VolumeObject* volume);
+    // The object's albedo and g, as TranslucentObject holds them; its samples serve any (core/sample_set.h).
+    void setAlbedoAndG(size_t index, const Rgb& albedo, double g);
     size_t objectCount() const;
     // Moves, turns or scales object index (any similarity, every frame if need be:
     // nothing is uploaded; isotropic media recompute their samples' light once).

@@ -191,6 +191,17 @@ void objectsPanel(ViewerState& state, const LoadedScene& loaded) {
         state.iors[state.selected] = std::clamp(double(ior), 1.0, 4.0);
         state.iorsChanged = true;
     }
+    // Albedo and g: no new preprocessing either (the samples hold weights and attenuation).
+    glm::vec3 albedo(state.albedos[state.selected]);
+    if (ImGui::ColorEdit3("albedo", glm::value_ptr(albedo))) {
+        state.albedos[state.selected] = glm::clamp(Rgb(albedo), Rgb(0.0), Rgb(1.0));
+        state.mediaChanged = true;
+    }
+    float g = float(state.gs[state.selected]);
+    if (ImGui::SliderFloat("g", &g, -0.99f, 0.99f, "%.2f")) {
+        state.gs[state.selected] = std::clamp(double(g), -0.999, 0.999);
+        state.mediaChanged = true;
+    }
     float scale = float(p.scale);
     if (ImGui::SliderFloat("scale", &scale, 0.1f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic) && scale > 0.0f) {
         p.scale = scale;
@@ -356,6 +367,14 @@ private:
             }
             state_.iorsChanged = false;
             grids_.invalidate();
+        }
+        if (state_.mediaChanged) {
+            for (size_t i = 0; i < state_.albedos.size(); ++i) {
+                loaded_.objects[i].setAlbedoAndG(state_.albedos[i], state_.gs[i]);
+                renderer_.setAlbedoAndG(i, state_.albedos[i], state_.gs[i]);
+            }
+            state_.mediaChanged = false;
+            grids_.invalidate();  // the multiple scattering depends on both
         }
         if (state_.placementsChanged) {
             for (size_t i = 0; i < state_.placements.size(); ++i) renderer_.setPlacement(i, state_.placements[i]);

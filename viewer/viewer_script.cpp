@@ -170,6 +170,19 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         if (state.selected >= state.iors.size()) throw Error(where, "no object is selected");
         state.iors[state.selected] = ior;
         state.iorsChanged = true;
+    } else if (command == "albedo") {
+        const Vec3 a = readVec3(in, where, "albedo", kMaxMagnitude);
+        if (!(glm::all(glm::greaterThanEqual(a, Vec3(0.0))) && glm::all(glm::lessThanEqual(a, Vec3(1.0)))))
+            throw Error(where, "albedo needs three numbers in [0, 1]");
+        if (state.selected >= state.albedos.size()) throw Error(where, "no object is selected");
+        state.albedos[state.selected] = Rgb(a);
+        state.mediaChanged = true;
+    } else if (command == "g") {
+        double g = 0.0;
+        if (!(in >> g) || !(g >= -0.999 && g <= 0.999)) throw Error(where, "g needs a mean cosine in [-0.999, 0.999]");
+        if (state.selected >= state.gs.size()) throw Error(where, "no object is selected");
+        state.gs[state.selected] = g;
+        state.mediaChanged = true;
     } else if (command == "extinction") {
         state.extinctionScale = float(readPositive(in, where, "extinction"));
     } else if (command == "exposure") {

@@ -1,6 +1,6 @@
 #pragma once
 // What the viewer shows and the user (or a script) changes: camera, lights,
-// where each object stands and its index of refraction, medium scale, passes, exposure.
+// where each object stands, its index of refraction, albedo and g, medium scale, passes, exposure.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -15,6 +15,8 @@ struct ViewerState {
         for (const ObjectDesc& o : scene.objects) {
             placements.push_back(o.transform);
             iors.push_back(o.medium.ior);
+            albedos.push_back(o.medium.albedo);
+            gs.push_back(o.medium.g);
         }
     }
     OrbitCamera camera;
@@ -27,6 +29,11 @@ struct ViewerState {
     // Each object's refractive index, from the scene; `ior` (and the panel) change the selected one's.
     std::vector<double> iors;
     bool iorsChanged = false;
+    // Each object's albedo and Henyey-Greenstein g, from the scene; `albedo` and `g` (and the
+    // panel) change the selected one's. The samples do not depend on them: no new preprocessing.
+    std::vector<Rgb> albedos;
+    std::vector<double> gs;
+    bool mediaChanged = false;
     float extinctionScale = 1.0f;
     bool surface = true, scattering = true;
     // Each sample's light traced through the objects (DrawOptions::tracedLight)

@@ -97,7 +97,7 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
     described.weighted.resize(n);
     set.positions.resize(base + n);
     set.radii.resize(base + n);
-    set.scattering.resize(base + n);
+    set.weights.resize(base + n);
     set.extinction.resize(base + n);
     set.widths.resize(base + n);
     set.region.resize(base + n);
@@ -115,7 +115,6 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
             set.radii[k] = float(d.radius);
             // FWHM = widthFactor * radius (thesis 3.3.2); FWHM = 2 sqrt(2 ln 2) sigma.
             float width = float(settings.widthFactor * d.radius / (2.0 * std::sqrt(2.0 * std::log(2.0))));
-            set.scattering[k] = glm::vec3(object.scattering(d.position));
             set.extinction[k] = glm::vec3(object.extinction(d.position));
             // The region a Gaussian is clipped to: the object minus its blockers, and its
             // density slab where the density jumps between slabs; its mirror image

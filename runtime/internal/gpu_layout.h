@@ -52,7 +52,7 @@ struct Light {
 
 struct Sample {
     vec4 centreWidth;  // world-space centre, Gaussian standard deviation
-    vec4 scattering;   // sigma_s times the partition-of-unity weight, per channel
+    vec4 scattering;   // sigma_t times the partition-of-unity weight, per channel: times the albedo, sigma_s
     vec4 extinction;   // sigma_t at the centre, per channel
     vec4 region;       // [lo, hi] of its density slab along regionAxis; the ball's curvature, share
     vec4 image;        // the centre mirrored across the nearest boundary of its region

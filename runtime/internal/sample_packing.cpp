@@ -10,7 +10,7 @@ std::vector<gpu::Sample> packSamples(const SampleSet& samples) {
     for (size_t i = 0; i < samples.size(); ++i) {
         const BoundaryBall& ball = samples.boundary[i];
         packed[i].centreWidth = glm::vec4(samples.positions[i], samples.widths[i]);
-        packed[i].scattering = glm::vec4(samples.scattering[i], 0.0f);
+        packed[i].scattering = glm::vec4(samples.weights[i] * samples.extinction[i], 0.0f);
         packed[i].extinction = glm::vec4(samples.extinction[i], 0.0f);
         packed[i].region = glm::vec4(samples.region[i], ball.curvature, ball.share);
         packed[i].image = glm::vec4(samples.image[i], 0.0f);

@@ -257,6 +257,7 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         glUniform1i(p.uniform("shOrder"), o.samples->shOrder());
         glUniform1i(p.uniform("channels"), o.samples->channels());
         glUniform1f(p.uniform("g"), float(o.g));
+        glUniform3fv(p.uniform("albedo"), 1, glm::value_ptr(glm::vec3(o.albedo)));
         if (variant.regions) glUniform1i(p.uniform("regionAxis"), int(parameters.regionAxis));
         if (!slabs.empty()) {
             glUniform1i(p.uniform("slabCount"), GLint(slabs.bounds.size()));

@@ -21,6 +21,7 @@
 // exact on convex objects where the SH of a box's or a blocker's edges are not.
 // psi_i(w_view) is only used where the density varies smoothly.
 uniform vec3 cameraPosition;
+uniform vec3 albedo;  // the medium's, at draw time: the samples hold w_i sigma_t (core/sample_set.h)
 uniform mat4 view;
 // RECEIVED_CACHED (a program variant, SamplePass::scatterProgram): with an
 // isotropic phase function the received light does not depend on the view:
@@ -163,7 +164,7 @@ void main() {
         }
     }
     vec3 towardCamera = viewFromFront ? vec3(1.0) : attenuation(i, toCamera);
-    v.radiance = extinctionScale * samples[i].scattering.rgb * received.light.rgb * towardCamera;
+    v.radiance = extinctionScale * albedo * samples[i].scattering.rgb * received.light.rgb * towardCamera;
     for (int c = 0; c < 3; ++c) {
         vec3 g = vec3(0.0);
         if (lightVaries) {

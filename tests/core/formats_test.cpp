@@ -156,7 +156,7 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     s.positions = {{1, 2, 3}};
     s.radii = {0.25f};
     s.widths = {0.75f};
-    s.scattering = {{4, 5, 6}};
+    s.weights = {0.5f};
     s.extinction = {{7, 8, 9}};
     s.region = {{-0.5f, 0.5f}};
     s.image = {{10, 11, 12}};
@@ -168,7 +168,7 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     writeSampleFile(dir.path() / "s.lsf", s);
     const std::vector<char> b = bytesOf(dir.path() / "s.lsf");
     EXPECT_EQ(std::string(b.data(), 8), "LUCENTSF");
-    EXPECT_EQ(at<uint32_t>(b, 8), 7u);
+    EXPECT_EQ(at<uint32_t>(b, 8), 8u);
     EXPECT_EQ(at<uint64_t>(b, 12), 1u);
     EXPECT_EQ(at<uint32_t>(b, 20), 2u);
     EXPECT_EQ(at<uint32_t>(b, 24), 3u);
@@ -194,8 +194,8 @@ TEST(Formats, SampleFileFieldsSitAtTheirDocumentedOffsets) {
     o += 4;
     EXPECT_EQ(at<float>(b, o), 0.75f);  // width
     o += 4;
-    EXPECT_EQ(at<float>(b, o), 4.0f);  // w sigma_s r
-    o += 12;
+    EXPECT_EQ(at<float>(b, o), 0.5f);  // weight w
+    o += 4;
     EXPECT_EQ(at<float>(b, o + 4), 8.0f);  // sigma_t g
     o += 12;
     EXPECT_EQ(at<float>(b, o), -0.5f);  // region lo

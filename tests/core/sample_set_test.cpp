@@ -26,7 +26,7 @@ SampleSet makeSamples(size_t n, uint32_t channels = 3) {
         s.positions.emplace_back(float(i), 0.5f, -0.25f);
         s.radii.push_back(0.1f + float(i));
         s.widths.push_back(0.05f + float(i));
-        s.scattering.emplace_back(1.0f, 2.0f, 3.0f);
+        s.weights.push_back(0.5f + float(i));
         s.extinction.emplace_back(2.0f, 3.0f, 4.0f);
         s.region.emplace_back(-1.0f, 0.5f + float(i));
         s.image.emplace_back(float(i), 1.5f, -0.25f);

@@ -149,10 +149,11 @@ TEST(Scene, FingerprintFollowsMeshAndMedium) {
     dir.write("m.obj", "v 0 0 0\n");
     const std::string scene =
         R"({"camera": {"position": [0,0,5], "target": [0,0,0], "fov_y": 40, "width": 8, "height": 8},
-      "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": SIGMA, "albedo": 0.5}, "samples": "s.lsf"}]})";
-    auto with = [&](const std::string& sigma) {
+      "lights": [], "objects": [{"mesh": "m.obj", "medium": {"sigma_t": SIGMA, "albedo": ALBEDO}, "samples": "s.lsf"}]})";
+    auto with = [&](const std::string& sigma, const std::string& albedo = "0.5") {
         std::string s = scene;
         s.replace(s.find("SIGMA"), 5, sigma);
+        s.replace(s.find("ALBEDO"), 6, albedo);
         return parseSceneText(s, dir.path() / "scene.json").objects[0].fingerprint;
     };
     EXPECT_EQ(with("1"), with("1"));
@@ -160,6 +161,10 @@ TEST(Scene, FingerprintFollowsMeshAndMedium) {
     // The samples do not depend on the boundary's index: every method refracts at draw time.
     EXPECT_EQ(with("1"), with("1, \"ior\": 1.5"));
     EXPECT_NE(with("1, \"ior\": 1.5"), with("2, \"ior\": 1.5"));
+    // Nor on the albedo or g: the samples hold weights and attenuation, the albedo and phase are drawn.
+    EXPECT_EQ(with("1"), with("1", "[0.9, 0.2, 0.1]"));
+    EXPECT_EQ(with("1"), with("1, \"g\": 0.7"));
+    EXPECT_NE(with("1", "0.9"), with("2", "0.9"));
     const uint64_t before = with("1");
     dir.write("m.obj", "v 0 0 1\n");
     EXPECT_NE(before, with("1"));

@@ -34,7 +34,7 @@ TEST(Preprocessor, SphereSamplesAreInsideAndNearTheRequestedCount) {
         // FWHM = width factor * radius.
         EXPECT_NEAR(set.widths[i] * 2.0 * std::sqrt(2.0 * std::log(2.0)), small().widthFactor * set.radii[i], 1e-5);
         EXPECT_NEAR(set.extinction[i].g, 2.0, 1e-6);
-        EXPECT_GT(set.scattering[i].g, 0.0f);  // sigma_s = 1.5 times a positive weight
+        EXPECT_GT(set.weights[i], 0.0f);
         // The mirror image lies across the sphere's surface, as far out as the centre is in.
         const Vec3 image(set.image[i]);
         EXPECT_NEAR(glm::length(image) - 1.0, 1.0 - glm::length(p), 2e-3);
@@ -42,12 +42,12 @@ TEST(Preprocessor, SphereSamplesAreInsideAndNearTheRequestedCount) {
     EXPECT_EQ(set.coefficients().size(), set.size() * 16);
 }
 
-// sum_i w_i (gamma_i + gamma_i*) at p, w_i = scattering / sigma_s.
-double partitionOfUnity(const SampleSet& set, const Vec3& p, double sigmaS) {
+// sum_i w_i (gamma_i + gamma_i*) at p.
+double partitionOfUnity(const SampleSet& set, const Vec3& p) {
     double sum = 0.0;
     for (size_t i = 0; i < set.size(); ++i) {
         const double s2 = double(set.widths[i]) * set.widths[i];
-        const double w = set.scattering[i].g / sigmaS;
+        const double w = set.weights[i];
         for (const Vec3 c : {Vec3(set.positions[i]), Vec3(set.image[i])})
             sum += w * std::exp(-0.5 * glm::dot(p - c, p - c) / s2);
     }
@@ -68,8 +68,8 @@ TEST(Preprocessor, WeightedGaussiansAndImagesSumToOneUpToTheSurface) {
     for (int k = 0; k < n; ++k) {
         const double z = 2.0 * rng.uniform() - 1.0, phi = 2.0 * kPi * rng.uniform();
         const Vec3 d(std::sqrt(1.0 - z * z) * std::cos(phi), std::sqrt(1.0 - z * z) * std::sin(phi), z);
-        deep += partitionOfUnity(set, (0.6 * rng.uniform()) * d, 0.05) / n;
-        shallow += partitionOfUnity(set, (1.0 - 0.1 * r * rng.uniform()) * d, 0.05) / n;
+        deep += partitionOfUnity(set, (0.6 * rng.uniform()) * d) / n;
+        shallow += partitionOfUnity(set, (1.0 - 0.1 * r * rng.uniform()) * d) / n;
     }
     EXPECT_NEAR(deep, 1.0, 0.08);
     EXPECT_NEAR(shallow, 1.0, 0.12);
@@ -108,7 +108,7 @@ TEST(Preprocessor, PublishedSchemeStartsOneSpacingDownWithEqualWeights) {
     double shallowest = 1.0;
     for (size_t i = 0; i < set.size(); ++i) {
         shallowest = std::min(shallowest, 1.0 - glm::length(Vec3(set.positions[i])));
-        EXPECT_FLOAT_EQ(set.scattering[i].g, set.scattering[0].g);
+        EXPECT_FLOAT_EQ(set.weights[i], set.weights[0]);
     }
     // Marching cubes places a layer within a fraction of a voxel of its offset.
     EXPECT_GT(shallowest, 0.7 * set.parameters.layerSpacing);
@@ -138,19 +138,22 @@ TEST(Preprocessor, NoSampleInsideABlocker) {
     for (const auto& p : set.positions) EXPECT_FALSE(cube.insideBlocker(Vec3(p)));
 }
 
-std::vector<char> preprocessedBytes(int threads, const test::ScratchDir& dir) {
+std::vector<char> preprocessedBytes(int threads, const test::ScratchDir& dir, const Rgb& albedo = Rgb(0.8),
+                                    double g = 0.0) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     std::vector<std::string> warnings;
     const VolumeObject layered(
-        [] {
+        [&] {
             ObjectDesc d = test::simpleObject(test::modelsDir() / "cube.obj", 1.0, 0.8);
+            d.medium.albedo = albedo;
+            d.medium.g = g;
             d.medium.density.type = DensityDesc::Type::Layers;
             d.medium.density.axis = 1;
             d.medium.density.values = {0.5, 4.0};
             return d;
         }(),
         warnings);
-    const auto file = dir.path() / ("t" + std::to_string(threads) + ".lsf");
+    const auto file = dir.path() / ("t" + std::to_string(threads) + "-" + std::to_string(albedo.r) + ".lsf");
     writeSampleFile(file, preprocessObject(layered, small()));
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -162,6 +165,16 @@ TEST(Preprocessor, SameSeedGivesIdenticalBytesWhateverTheThreadCount) {
     const auto two = preprocessedBytes(2, dir);
     ASSERT_GT(one.size(), 1000u);
     EXPECT_TRUE(one == two);
+}
+
+// The samples hold weights and attenuation: the albedo and g are taken at draw
+// time, which is why the fingerprint leaves them out (core/scene.cpp).
+TEST(Preprocessor, TheAlbedoAndGChangeNotOneByte) {
+    test::ScratchDir dir;
+    const auto one = preprocessedBytes(2, dir);
+    const auto other = preprocessedBytes(2, dir, Rgb(0.05, 0.5, 1.0), -0.7);
+    ASSERT_GT(one.size(), 1000u);
+    EXPECT_TRUE(one == other);
 }
 
 TEST(Preprocessor, NegligibleLightDepthInvertsE2) {

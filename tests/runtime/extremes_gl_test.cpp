@@ -71,7 +71,7 @@ Render render(const Case& c, const test::ScratchDir& dir) {
     settings.widthFactor = c.widthFactor;
     SampleSet set = preprocessObject(objects[0], settings);
     if (c.singleSample) {
-        set.positions.resize(1), set.radii.resize(1), set.widths.resize(1), set.scattering.resize(1);
+        set.positions.resize(1), set.radii.resize(1), set.widths.resize(1), set.weights.resize(1);
         set.extinction.resize(1), set.region.resize(1), set.image.resize(1), set.boundary.resize(1),
             set.truncationError.resize(1);
         set.sh.resize(set.coefficientsPerSample());

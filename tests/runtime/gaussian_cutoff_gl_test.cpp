@@ -47,7 +47,7 @@ struct OneGaussian {
         one.positions = {set.positions[nearest]};
         one.radii = {set.radii[nearest]};
         one.widths = {0.1f};
-        one.scattering = {set.scattering[nearest]};
+        one.weights = {set.weights[nearest]};
         one.extinction = {set.extinction[nearest]};
         one.region = {set.region[nearest]};
         one.image = {set.image[nearest]};

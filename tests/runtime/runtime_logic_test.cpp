@@ -125,7 +125,7 @@ SampleSet threeSamples() {
     s.positions = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
     s.radii = {0.1f, 0.2f, 0.3f};
     s.widths = {0.5f, 0.6f, 0.7f};
-    s.scattering = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+    s.weights = {1.0f, 2.0f, 0.5f};
     s.extinction = {{4, 4, 4}, {4, 4, 4}, {8, 8, 8}};
     s.region = {{0, 1}, {0, 1}, {1, 2}};
     s.image = {{-1, -2, -3}, {-4, -5, -6}, {-7, -8, -9}};
@@ -139,7 +139,7 @@ TEST(SamplePacking, EachFieldLandsWhereTheShaderReadsIt) {
     const std::vector<gpu::Sample> p = packSamples(threeSamples());
     ASSERT_EQ(p.size(), 3u);
     EXPECT_EQ(p[2].centreWidth, glm::vec4(7, 8, 9, 0.7f));
-    EXPECT_EQ(p[2].scattering, glm::vec4(3, 3, 3, 0));
+    EXPECT_EQ(p[2].scattering, glm::vec4(4, 4, 4, 0));  // weight times extinction: sigma_s per unit albedo
     EXPECT_EQ(p[2].extinction, glm::vec4(8, 8, 8, 0));
     EXPECT_EQ(p[2].region, glm::vec4(1, 2, 0.5f, 0.75f));  // slab, then the ball's curvature and share
     EXPECT_EQ(p[2].image, glm::vec4(-7, -8, -9, 0));

@@ -107,7 +107,7 @@ TEST(Viewer, PanelSitsBesideTheViewAndExposureCountsStops) {
 // The selected object moved, turned and scaled by script, and given another
 // ior, is the object the scene's transform places there with that ior: the
 // viewer's frame equals lucent render's.
-TEST(Viewer, MovingAndRefractingTheSelectedObjectDrawsWhatTheSceneSays) {
+TEST(Viewer, MovingRefractingAndRecolouringTheSelectedObjectDrawsWhatTheSceneSays) {
     test::ScratchDir dir;
     const std::string head = R"({
       "camera": {"position": [0, 1, 5], "target": [0.3, 0, 0], "fov_y": 35, "width": 96, "height": 96},
@@ -118,13 +118,15 @@ TEST(Viewer, MovingAndRefractingTheSelectedObjectDrawsWhatTheSceneSays) {
     const auto scene = dir.write("scene.json", head + "}]}");
     std::string refracting = head;
     const std::string albedo = "\"albedo\": 0.75";
-    refracting.replace(refracting.find(albedo), albedo.size(), albedo + ", \"ior\": 1.4");
+    // Another albedo and g than the samples were made with: they serve any.
+    refracting.replace(refracting.find(albedo), albedo.size(), "\"albedo\": [0.4, 0.6, 0.9], \"g\": 0.3, \"ior\": 1.4");
     const auto placed = dir.write("placed.json", refracting + R"(,
       "transform": {"scale": 1.3, "rotate": {"axis": [0, 1, 0], "degrees": 40}, "translate": [0.6, 0, 0]}}]})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
     const auto shot = dir.path() / "moved.pfm", rendered = dir.path() / "rendered.pfm";
     const auto script = dir.write("move.txt",
                                   "exposure 0\nselect 0\nmove 0.6 0 0\nrotate 0 1 0 40\nscale 1.3\nior 1.4\n"
+                                  "albedo 0.4 0.6 0.9\ng 0.3\n"
                                   "screenshot " +
                                       shot.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),

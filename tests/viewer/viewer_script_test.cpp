@@ -84,6 +84,11 @@ TEST(ViewerScript, TheSelectedObjectMovesTurnsScalesAndRefracts) {
     applyScriptLine(state, "ior 1.44", "s:6");
     EXPECT_EQ(state.iors, std::vector<double>({1.0, 1.44}));
     EXPECT_TRUE(state.iorsChanged);
+    applyScriptLine(state, "albedo 0.1 0.2 1", "s:7");
+    applyScriptLine(state, "g -0.5", "s:8");
+    EXPECT_EQ(state.albedos[1], Rgb(0.1, 0.2, 1.0));
+    EXPECT_EQ(state.gs[1], -0.5);
+    EXPECT_TRUE(state.mediaChanged);
 }
 
 TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
@@ -118,6 +123,11 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
          "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
         {"light 0 cone 10 20", "s:1: light property must be position, direction, colour or (a spot's) cone"},
         {"add area 0 0 0 1 1 1", "s:1: add needs point, spot or directional"},
+        {"albedo 0.5 1.5 0", "s:1: albedo needs three numbers in [0, 1]"},
+        {"albedo 0.5 -0.1 0", "s:1: albedo needs three numbers in [0, 1]"},
+        {"albedo 0.5 0.5", "s:1: expected three numbers for albedo"},
+        {"g 1", "s:1: g needs a mean cosine in [-0.999, 0.999]"},
+        {"g nan", "s:1: g needs a mean cosine in [-0.999, 0.999]"},
     };
     for (const auto& [line, message] : bad) {
         ViewerState state(oneLight());
