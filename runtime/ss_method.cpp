@@ -7,6 +7,7 @@
 #include "core/sample_set.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/internal/refracted_view.h"
+#include "runtime/grazing_light.h"
 #include "runtime/internal/sample_packing.h"
 #include "runtime/offscreen_frame.h"
 #include "runtime/preprocessed_size.h"
@@ -191,6 +192,11 @@ std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, c
         const SampleParameters& p = scene.samples[i].parameters;
         std::string size = preprocessedSizeLimitation(name, o.placement().scale, p);
         if (!size.empty()) out.push_back(std::move(size));
+        if (p.scheme == SampleScheme::OpticallyThick) {
+            std::string grazing = grazingLightLimitation(
+                name, seenSurfaceLighting(o.mesh(), scene.desc.camera.position, scene.desc.lights));
+            if (!grazing.empty()) out.push_back(std::move(grazing));
+        }
         if (p.scheme == SampleScheme::Lucent &&
             (p.widthFactor < 0.5f * kMeasuredWidthFactors[0] || p.widthFactor > 2.0f * kMeasuredWidthFactors[1]))
             out.push_back("object '" + name + "': Gaussians " + std::to_string(p.widthFactor) +

@@ -205,6 +205,25 @@ TEST(Extremes, LightInsideOrAtTheSurfaceIsWarnedAbout) {
     EXPECT_FALSE(ssWarns(sphere(2.0), "light 0 lies"));  // a light outside: no warning
 }
 
+// An optically thick object lit only where the camera cannot see (runtime/grazing_light.h).
+TEST(Extremes, AnOpticallyThickCubeLitFromTheSideOnlyIsWarnedAbout) {
+    SceneDesc desc;
+    desc.camera = test::squareCamera(Vec3(0.0, 1.2, 5.0), Vec3(0.0), 40.0, 64);
+    desc.objects = {test::simpleObject(test::modelsDir() / "cube.obj", 80.0, 0.9)};
+    LoadedScene scene = loadScene(desc, false);
+    attachSamples(scene, {preprocessObject(scene.objects[0], qualityPreset("draft"))});
+    ASSERT_EQ(scene.samples[0].parameters.scheme, SampleScheme::OpticallyThick);
+    auto warned = [&](const Vec3& light) {
+        scene.desc.lights = {test::pointLight(light, Rgb(60.0))};
+        for (const std::string& line : SsMethod::sampleLimitations(scene, SsOptions{}))
+            if (line.find("optically thick and its seen surface is lit at") != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_FALSE(warned(Vec3(0.5, -0.3, 4.0)));  // in front: 0.4% from the reference (docs/accuracy.md)
+    EXPECT_TRUE(warned(Vec3(4.0, -0.3, 0.0)));   // beside: black against the edges' light
+    EXPECT_TRUE(warned(Vec3(0.0, -0.3, -4.0)));  // behind
+}
+
 TEST(Extremes, CameraInsideTheObject) {
     Case c = sphere(0.5);
     c.camera = Vec3(0, 0, 0.5);
