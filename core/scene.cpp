@@ -40,6 +40,7 @@ Light parseLight(Node n) {
         l.type = Light::Type::Point;
         l.position = n.child("position").point();
         l.power = n.child("intensity").rgb(0.0, kMaxMagnitude);
+        if (n.has("radius")) l.radius = n.child("radius").number(0.0, kMaxCoordinate);
     } else if (type == "spot") {
         l.type = Light::Type::Point;
         l.position = n.child("position").point();

@@ -36,6 +36,9 @@ struct Light {
     Vec3 direction{0};             // directional lights: unit direction the light travels in
     Rgb power{0};                  // intensity (W/sr) for point lights, irradiance (W/m^2) for directional
     std::optional<SpotCone> spot;  // point lights only
+    // Point lights without a cone: a sphere of this radius around position that
+    // emits uniformly from its surface with the same total power (core/sphere_light.h); 0: a point.
+    double radius = 0.0;
 };
 
 // The cone's falloff as one affine step, (axis / (cos inner - cos outer),

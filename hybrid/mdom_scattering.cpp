@@ -225,7 +225,7 @@ public:
     LightArrival of(const Light& light) {
         const bool point = light.type == Light::Type::Point;
         kernel_.setArg(5, point ? float4Of(light.position, 1.0) : float4Of(light.direction, 0.0));
-        kernel_.setArg(6, float4Of(light.power, 0.0));
+        kernel_.setArg(6, float4Of(light.power, light.radius));
         const glm::dvec4 cone = spotCoefficients(light);
         kernel_.setArg(7, float4Of(Vec3(cone), cone.w));
         queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(voxels_));

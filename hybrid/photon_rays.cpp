@@ -24,6 +24,7 @@ RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int co
     const double radius = 0.5 * box.diagonal();
     const int side = std::max(1, int(std::lround(std::sqrt(double(count)))));
     Rng rng(seed, 0x7261796d6170ull);  // "raymap"
+    Rng disk(seed, 0x6469736bull);     // "disk": a sphere light's, apart so that the rays' strata stay as they were
     for (const Light& light : lights) {
         Vec3 w = light.type == Light::Type::Point ? centre - light.position : light.direction;
         const double distance = glm::length(w);
@@ -45,8 +46,16 @@ RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int co
                 if (light.type == Light::Type::Point) {
                     const double cosT = 1.0 - a * (1.0 - cosMax), sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
                     const double phi = 2.0 * kPi * b;
-                    origin = light.position;
                     dir = cosT * w + sinT * (std::cos(phi) * u + std::sin(phi) * v);
+                    // A sphere light's rays along dir leave its disk across dir uniformly (its
+                    // radiance is the same over the disk it shows): so do the photons.
+                    origin = light.position;
+                    if (light.radius > 0.0) {
+                        Vec3 du, dv;
+                        basis(dir, du, dv);
+                        const double r = light.radius * std::sqrt(disk.uniform()), t = 2.0 * kPi * disk.uniform();
+                        origin += r * (std::cos(t) * du + std::sin(t) * dv);
+                    }
                 } else {
                     origin = centre - 2.0 * radius * w + radius * ((2.0 * a - 1.0) * u + (2.0 * b - 1.0) * v);
                     dir = w;

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sphere_light.h"
+
 namespace lucent {
 
-std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x) {
+std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x, double u, double v) {
     LightArrival a;
-    if (light.type == Light::Type::Point) {
+    if (light.type == Light::Type::Point && light.radius > 0.0) {
+        const std::optional<SphereLightCone> cone = sphereLightCone(light.position, light.radius, x);
+        if (!cone) return std::nullopt;
+        a.toLight = coneDirection(*cone, u, v);
+        a.distance = distanceToSphere(x, a.toLight, light.position, light.radius);
+        a.irradiance = light.power * cone->irradiance;
+    } else if (light.type == Light::Type::Point) {
         a.toLight = light.position - x;
         a.distance = glm::length(a.toLight);
         if (a.distance == 0.0) return std::nullopt;

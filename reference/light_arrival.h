@@ -18,8 +18,14 @@ struct LightArrival {
     Rgb irradiance;   // before attenuation
 };
 
-// None for a point light exactly at x (no direction to come from) or a dark light.
-std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x);
+// None for a point light exactly at x (no direction to come from), a point
+// inside a sphere light, or a dark light. A sphere light's arrival comes from the
+// direction (u, v) of its cone (uniform in solid angle, core/sphere_light.h)
+// with the light of the whole cone: averaged over (u, v) it is the sphere's.
+std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x, double u = 0.5, double v = 0.5);
+
+// The reference integrates a sphere light's cone on this many strata per axis.
+inline constexpr int kSphereLightStrata = 8;
 
 // exp(-sum over objects of sigma_t times the density path) per channel.
 Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x, const LightArrival& arrival);

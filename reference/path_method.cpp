@@ -2,12 +2,15 @@
 
 #include <algorithm>
 
+#include "core/sphere_light.h"
 #include "reference/path_tracer.h"
 
 namespace lucent {
 
 std::vector<std::string> PathMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
-    return overlappingRefractors(scene, "the path tracer");
+    std::vector<std::string> out = overlappingRefractors(scene, "the path tracer");
+    for (std::string& line : sphereLightsThroughBoundaries(scene.desc)) out.push_back(std::move(line));
+    return out;
 }
 
 std::vector<std::string> overlappingRefractors(const LoadedScene& scene, const std::string& method) {

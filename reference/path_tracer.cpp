@@ -109,10 +109,13 @@ std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const
     }
 }
 
-Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
+Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const {
     Rgb sum(0.0);
     for (const Light& light : scene_.lights) {
-        const std::optional<LightArrival> a = lightArrivingAt(light, x);
+        // A sphere light: one direction of its cone at random (only then: other scenes keep their random stream).
+        double u = 0.5, v = 0.5;
+        if (light.radius > 0.0) u = rng.uniform(), v = rng.uniform();
+        const std::optional<LightArrival> a = lightArrivingAt(light, x, u, v);
         if (!a) continue;
         sum += henyeyGreenstein(glm::dot(a->toLight, dir), object.desc().medium.g) * a->irradiance *
                transmittanceToLight(objects_, x, *a);
@@ -151,7 +154,7 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, 
         // Free flights sampled in proportion to sigma_t T leave the albedo as the
         // weight of each collision (the collision estimator).
         throughput *= masked(inside->desc().medium.albedo, channel);
-        total += throughput * masked(gatherLights(*inside, x, w), channel);
+        total += throughput * masked(gatherLights(*inside, x, w, rng), channel);
         // Russian roulette once the path has scattered a few times.
         if (collisions >= 3) {
             const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));

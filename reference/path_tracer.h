@@ -105,11 +105,11 @@ private:
     Ahead ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, PathSampler& rng, int channel) const;
     // The light gathered at a collision in a refracting scene: through the boundary
     // for a refracting object, along straight lines for an index-matched one.
-    Rgb gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;
+    Rgb gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const;
     // Where the ray stops at an opaque blocker, or infinity.
     double blockerDistance(const Vec3& origin, const Vec3& dir) const;
     // sum_j p(w_j, dir) E_j T_j at x: the light arriving at x, scattered along dir.
-    Rgb gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir) const;
+    Rgb gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const;
 
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;

@@ -1,5 +1,6 @@
 #include "reference/reference_method.h"
 
+#include "core/sphere_light.h"
 #include "reference/path_method.h"
 #include "reference/reference_renderer.h"
 
@@ -15,7 +16,9 @@ std::unique_ptr<Method> ReferenceMethod::create(const MethodOptions& options) {
 }
 
 std::vector<std::string> ReferenceMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
-    return overlappingRefractors(scene, "the reference");
+    std::vector<std::string> out = overlappingRefractors(scene, "the reference");
+    for (std::string& line : sphereLightsThroughBoundaries(scene.desc)) out.push_back(std::move(line));
+    return out;
 }
 
 Image ReferenceMethod::render(const LoadedScene& scene, const MethodSettings& settings) {

@@ -39,12 +39,17 @@ Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, co
 Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
     Rgb sum(0.0);
     for (const Light& light : scene_.lights) {
-        const std::optional<LightArrival> a = lightArrivingAt(light, x);
-        if (!a) continue;
-        // Phase function between the light's propagation direction (-toLight) and the
-        // view's propagation direction (-viewDir).
-        const double phase = henyeyGreenstein(glm::dot(a->toLight, viewDir), object.desc().medium.g);
-        sum += phase * a->irradiance * transmittanceToLight(objects_, x, *a);
+        // A sphere light's cone on a grid of strata (the midpoint rule in solid angle).
+        const int strata = light.radius > 0.0 ? kSphereLightStrata : 1;
+        for (int k = 0; k < strata * strata; ++k) {
+            const std::optional<LightArrival> a =
+                lightArrivingAt(light, x, (k % strata + 0.5) / strata, (k / strata + 0.5) / strata);
+            if (!a) continue;
+            // Phase function between the light's propagation direction (-toLight) and the
+            // view's propagation direction (-viewDir).
+            const double phase = henyeyGreenstein(glm::dot(a->toLight, viewDir), object.desc().medium.g);
+            sum += phase * a->irradiance * transmittanceToLight(objects_, x, *a) / double(strata * strata);
+        }
     }
     return sum;
 }

@@ -46,8 +46,9 @@ double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const 
 
 }  // namespace
 
-Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir) const {
-    if (object.desc().medium.ior == 1.0) return gatherLights(object, x, dir);
+Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir,
+                                      PathSampler& rng) const {
+    if (object.desc().medium.ior == 1.0) return gatherLights(object, x, dir, rng);
     return lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
 }
 
@@ -83,7 +84,7 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
             x += *a.collision * w;
             // The collision estimator, as in radiance(): the albedo is the collision's weight.
             throughput *= masked(inside->desc().medium.albedo, channel);
-            total += throughput * masked(gatherLightsRefracted(*inside, x, w), channel);
+            total += throughput * masked(gatherLightsRefracted(*inside, x, w, rng), channel);
             if (++collisions >= settings.maxScatter) break;
             if (collisions > 3) {
                 const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));

@@ -179,7 +179,7 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
     for (const Light& l : lights) {
         const bool point = l.type == Light::Type::Point;
         packed.push_back({glm::vec4(glm::vec3(point ? l.position : l.direction), point ? 1.0f : 0.0f),
-                          glm::vec4(glm::vec3(l.power), 0.0f), glm::vec4(spotCoefficients(l))});
+                          glm::vec4(glm::vec3(l.power), float(l.radius)), glm::vec4(spotCoefficients(l))});
     }
     GpuLights& g = impl_->lights;
     if (g.buffer) glDeleteBuffers(1, &g.buffer);

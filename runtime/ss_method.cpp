@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <future>
 
+#include "core/sphere_light.h"
 #include "core/error.h"
 #include "core/sample_set.h"
 #include "runtime/offscreen_context.h"
@@ -143,7 +144,12 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
 }
 
 std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, const SsOptions& options) {
-    std::vector<std::string> out;
+    std::vector<std::string> out = sphereLightsThroughBoundaries(scene.desc);
+    for (size_t j = 0; j < scene.desc.lights.size() && !options.tracedLight; ++j)
+        if (scene.desc.lights[j].radius > 0.0)
+            out.push_back("light " + std::to_string(j) +
+                          " is a sphere: --light sh takes its shadows from its centre alone (hard shadows; "
+                          "--light traced follows 16 rays over it)");
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const VolumeObject& o = scene.objects[i];
         const std::string& name = o.desc().name;

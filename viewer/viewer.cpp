@@ -125,6 +125,11 @@ void lightsPanel(ViewerState& state) {
             state.lightsChanged = true;
         }
         if (light.spot) state.lightsChanged |= spotControls(*light.spot);
+        float radius = float(light.radius);
+        if (point && !light.spot && ImGui::DragFloat("radius", &radius, 0.01f, 0.0f, 1e6f, "%.3f")) {
+            light.radius = std::max(0.0, double(radius));  // a sphere light (docs/scene-file.md)
+            state.lightsChanged = true;
+        }
         float peak = std::max({power.r, power.g, power.b, 1e-6f});
         glm::vec3 colour = power / peak;
         bool changed = ImGui::ColorEdit3("colour", glm::value_ptr(colour));

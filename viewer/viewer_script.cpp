@@ -48,6 +48,14 @@ double readPositive(std::istringstream& in, const std::string& where, const char
     return v;
 }
 
+// A point light's radius: 0 or more, as the scene file's key.
+double readRadius(std::istringstream& in, const std::string& where) {
+    double r;
+    if (!(in >> r) || !(r >= 0.0 && r <= kMaxCoordinate))
+        throw Error(where, "a light's radius needs a number in [0, 1e13]");
+    return r;
+}
+
 // INNER OUTER in degrees, as the scene file's spot keys take them.
 SpotCone readCone(std::istringstream& in, const std::string& where, const Vec3& axis) {
     double inner, outer;
@@ -108,10 +116,13 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
             light.direction = readDirection(in, where);
         else if (what == "cone" && light.spot)
             light.spot = readCone(in, where, light.spot->axis);
+        else if (what == "radius" && light.type == Light::Type::Point && !light.spot)
+            light.radius = readRadius(in, where);
         else if (what == "colour" || what == "color")
             light.power = readColour(in, where);
         else
-            throw Error(where, "light property must be position, direction, colour or (a spot's) cone");
+            throw Error(where,
+                        "light property must be position, direction, colour, (a spot's) cone or (a point's) radius");
         state.lightsChanged = true;
     } else if (command == "add") {
         std::string type;

@@ -46,7 +46,7 @@ LUCENT_GPU_CONSTANT(kMaxLights, 256)
 
 struct Light {
     vec4 position;  // w = 1: point light at xyz; w = 0: directional, xyz = direction of travel
-    vec4 power;     // rgb: intensity (W/sr) or irradiance (W/m^2)
+    vec4 power;     // rgb: intensity (W/sr) or irradiance (W/m^2); w: a sphere light's radius (0: a point)
     vec4 spot;      // a spot's cone as core/scene.h's spotCoefficients; (0, 0, 0, 1) for any other light
 };
 

@@ -5,6 +5,16 @@
 #include "gpu_layout.h"
 layout(std140, binding = kBindingLights) uniform Lights { Light lights[kMaxLights]; };
 
+// What replaces 1 / d^2 for light j at squared distance d2 from its centre: for
+// a sphere light of radius R, L_e times its cone's solid angle per unit intensity,
+// 2 / (d2 (1 + sqrt(1 - R^2 / d2))) (core/sphere_light.h); nothing inside it.
+float inverseSquare(int j, float d2) {
+    float r = lights[j].power.w;
+    if (r <= 0.0) return 1.0 / d2;
+    float s2 = r * r / d2;
+    return s2 < 1.0 ? 2.0 / (d2 * (1.0 + sqrt(1.0 - s2))) : 0.0;
+}
+
 // The share of light j's intensity it sends along the unit direction w it
 // travels: a spot's cone (KHR_lights_punctual, core/scene.h's spotFalloff), 1 for any other light.
 float spotFalloff(int j, vec3 w) {

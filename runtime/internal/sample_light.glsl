@@ -209,7 +209,7 @@ Received receivedLight(int i, vec3 toCamera) {
             // Inverse-square falloff (Lucent is physically based), averaged over the
             // Gaussian's core: a light inside or on the object stays finite.
             float d2 = max(dot(toLight, toLight), width * width);
-            irradiance /= d2;
+            irradiance *= inverseSquare(j, d2);
             inverseDistance = inversesqrt(d2);
             toLight = length(toLight) > 0.0 ? normalize(toLight) : vec3(0.0, 0.0, 1.0);
             irradiance *= spotFalloff(j, -toLight);

@@ -31,7 +31,7 @@ void main() {
             float d2 = dot(toLight, toLight);
             if (d2 <= 0.0) continue;
             toLight *= inversesqrt(d2);
-            falloff = spotFalloff(j, -toLight) / d2;
+            falloff = spotFalloff(j, -toLight) * inverseSquare(j, d2);
         } else {
             toLight = -lights[j].position.xyz;
         }

@@ -3,9 +3,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "core/refraction.h"
+#include "core/sphere_light.h"
 
 namespace lucent {
 namespace {
@@ -34,6 +37,27 @@ Depth depthAlong(const std::vector<TracedVolume>& volumes, const TracedVolume* s
         d.tau += v.volume->desc().medium.sigmaT * (path / toOwn);
     }
     return d;
+}
+
+// A sphere light's soft shadow: its cone on kSoftStrata^2 strata, turned per
+// sample so that the strata's pattern does not print across the object, and the
+// transmittance averaged; packed as the depth whose exponential is that mean.
+constexpr int kSoftStrata = 4;
+
+Depth softDepth(const std::vector<TracedVolume>& volumes, const Vec3& x, const Light& light, size_t sample) {
+    const std::optional<SphereLightCone> cone = sphereLightCone(light.position, light.radius, x);
+    if (!cone) return Depth{Rgb(0.0), true};  // inside the light: it sends nothing there
+    const double turn = std::fmod(double(sample) * 0.6180339887498949, 1.0);
+    Rgb mean(0.0);
+    for (int k = 0; k < kSoftStrata * kSoftStrata; ++k) {
+        const double u = (k % kSoftStrata + 0.5) / kSoftStrata;
+        const double v = std::fmod((k / kSoftStrata + 0.5) / kSoftStrata + turn, 1.0);
+        const Vec3 w = coneDirection(*cone, u, v);
+        const Depth d = depthAlong(volumes, nullptr, x, w, distanceToSphere(x, w, light.position, light.radius));
+        if (!d.blocked) mean += glm::exp(-d.tau) / double(kSoftStrata * kSoftStrata);
+    }
+    if (std::max({mean.r, mean.g, mean.b}) <= 0.0) return Depth{Rgb(0.0), true};
+    return Depth{-glm::log(glm::max(mean, Rgb(1e-300))), false};
 }
 
 glm::vec4 packed(const Depth& d) {
@@ -70,6 +94,10 @@ std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volu
         const Vec3 x = placement.point(Vec3(samples.positions[i]));
         for (size_t j = 0; j < lightCount; ++j) {
             const Light& light = lights[j];
+            if (light.type == Light::Type::Point && light.radius > 0.0) {
+                depths[i * lightCount + j] = packed(softDepth(volumes, x, light, i));
+                continue;
+            }
             Vec3 dir;
             double reach = kInfinity;
             if (light.type == Light::Type::Point) {

@@ -28,7 +28,8 @@ struct TracedVolume {
 // For the samples of one object standing at placement, at [i * lights.size() + j]:
 // rgb the optical depth (sigma_t times the density path, every object summed)
 // from sample i's centre to light j in the renderer's world units, and w = 1
-// where a blocker stops the light.
+// where a blocker stops the light. For a sphere light, the depth whose
+// exponential is the mean transmittance over its cone (16 rays: soft shadows).
 std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volumes, const SampleSet& samples,
                                            const Similarity& placement, const std::vector<Light>& lights);
 

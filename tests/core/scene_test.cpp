@@ -112,6 +112,10 @@ TEST(Scene, SpotLightsParseWithKhrDefaultsAndFallOffAsKhrDefines) {
     const double halfway = std::acos(0.5 * (std::cos(glm::radians(20.0)) + std::cos(glm::radians(50.0))));
     EXPECT_NEAR(at(glm::degrees(halfway)), 0.25, 1e-12);
     EXPECT_EQ(spotFalloff(s.lights[1], Vec3(1, 0, 0)), 1.0);  // no cone: every direction
+    EXPECT_EQ(spot.radius, 0.0);
+    const SceneDesc sphere = parseSceneText(
+        variant("\"intensity\": [10, 10, 10]}", "\"intensity\": 1, \"radius\": 0.25}"), "dir/scene.json");
+    EXPECT_EQ(sphere.lights[0].radius, 0.25);
     EXPECT_EQ(spotCoefficients(s.lights[1]), glm::dvec4(0, 0, 0, 1));
 }
 
@@ -127,6 +131,9 @@ TEST(Scene, BadSpotConesAreOneErrorNamingTheKey) {
         {spot + "\"direction\": [0, -1, 0], \"inner_angle\": -1}", "/lights/0/inner_angle: must lie in"},
         {spot + "\"direction\": [0, 0, 0]}", "/lights/0/direction: must not be the zero vector"},
         {spot + "\"outer_angle\": 30}", "/lights/0: missing required key 'direction'"},
+        {spot + "\"direction\": [0, -1, 0], \"radius\": 0.5}", "/lights/0/radius: unknown key"},
+        {"{\"type\": \"point\", \"position\": [3, 3, 3], \"intensity\": 1, \"radius\": -0.5}",
+         "/lights/0/radius: must lie in"},
     };
     for (const auto& [light, message] : cases) {
         const std::string error = test::sceneErrorOf(variant(point, light));

@@ -26,6 +26,8 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     EXPECT_NEAR(glm::length(state.camera.camera().position - state.camera.camera().target), 0.5 * distance, 1e-9);
     applyScriptLine(state, "light 0 position -3 0 2", "s:2");
     EXPECT_EQ(state.lights[0].position, Vec3(-3, 0, 2));
+    applyScriptLine(state, "light 0 radius 0.25", "s:2");
+    EXPECT_EQ(state.lights[0].radius, 0.25);
     applyScriptLine(state, "add directional 0 -2e200 0 1 2 3  # a comment", "s:3");
     ASSERT_EQ(state.lights.size(), 2u);
     EXPECT_EQ(state.lights[1].direction, Vec3(0, -1, 0));
@@ -121,7 +123,9 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
          "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
         {"add spot 0 2 0 0 -1 0 nan 20 1 1 1",
          "s:1: a spot's cone needs INNER OUTER in degrees, 0 <= INNER < OUTER <= 90"},
-        {"light 0 cone 10 20", "s:1: light property must be position, direction, colour or (a spot's) cone"},
+        {"light 0 cone 10 20",
+         "s:1: light property must be position, direction, colour, (a spot's) cone or (a point's) radius"},
+        {"light 0 radius -1", "s:1: a light's radius needs a number in [0, 1e13]"},
         {"add area 0 0 0 1 1 1", "s:1: add needs point, spot or directional"},
         {"albedo 0.5 1.5 0", "s:1: albedo needs three numbers in [0, 1]"},
         {"albedo 0.5 -0.1 0", "s:1: albedo needs three numbers in [0, 1]"},
