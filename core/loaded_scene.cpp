@@ -23,6 +23,7 @@ std::vector<std::filesystem::path> inputFilesOf(const SceneDesc& desc, bool with
         if (o.medium.density.type == DensityDesc::Type::Grid) files.push_back(o.medium.density.file);
         if (withSampleFiles) files.push_back(o.samples);
     }
+    if (desc.environment) files.push_back(desc.environment->file);
     return files;
 }
 
@@ -36,6 +37,7 @@ SampleSet checkSamplesBelong(const VolumeObject& object, SampleSet samples, cons
 LoadedScene loadScene(const SceneDesc& desc, bool withSampleFiles) {
     LoadedScene scene;
     scene.desc = desc;
+    if (desc.environment) scene.environment = EnvironmentMap::load(*desc.environment);
     if (!withSampleFiles) {
         scene.objects = loadObjects(scene.desc, scene.warnings);
         return scene;

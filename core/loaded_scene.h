@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "core/environment_map.h"
 #include "core/sample_set.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
@@ -16,9 +19,15 @@ namespace lucent {
 struct LoadedScene {
     SceneDesc desc;
     std::vector<VolumeObject> objects;
-    std::vector<SampleSet> samples;     // one per object, or empty when no method asked for them
-    std::vector<std::string> warnings;  // for the caller to show ("lucent: warning: ...")
+    std::vector<SampleSet> samples;                     // one per object, or empty when no method asked for them
+    std::shared_ptr<const EnvironmentMap> environment;  // desc.environment's map, loaded
+    std::vector<std::string> warnings;                  // for the caller to show ("lucent: warning: ...")
 
+    // desc.lights and, with an environment, environmentDirections directional
+    // lights drawn from it: what the methods without their own environment sampling render.
+    std::vector<Light> lightsWithEnvironment(int environmentDirections) const {
+        return withEnvironmentLights(desc.lights, environment.get(), environmentDirections);
+    }
     bool hasSamples() const { return !objects.empty() && samples.size() == objects.size(); }
     Bounds3 bounds() const;  // of every object's boundary mesh
 };

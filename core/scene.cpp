@@ -59,7 +59,7 @@ Light parseLight(Node n) {
         l.direction = n.child("direction").direction();
         l.power = n.child("irradiance").rgb(0.0, kMaxMagnitude);
     } else {
-        n.child("type").fail("unknown light type '" + type + "' (expected point, spot or directional)");
+        n.child("type").fail("unknown light type '" + type + "' (expected point, spot, directional or environment)");
     }
     n.rejectUnknownKeys();
     return l;
@@ -68,6 +68,22 @@ Light parseLight(Node n) {
 std::filesystem::path resolve(const std::filesystem::path& sceneFile, const std::string& relative) {
     const std::filesystem::path p(relative);
     return p.is_absolute() ? p : sceneFile.parent_path() / p;
+}
+
+EnvironmentDesc parseEnvironment(Node n, const std::filesystem::path& sceneFile) {
+    EnvironmentDesc e;
+    e.file = resolve(sceneFile, n.child("file").string());
+    if (n.has("scale")) e.scale = n.child("scale").number(0.0, kMaxMagnitude);
+    if (n.has("rotate")) {
+        Node r = n.child("rotate");
+        r.requireObject();
+        const Vec3 axis = r.child("axis").direction();
+        const double degrees = r.child("degrees").number(-1e6, 1e6);
+        r.rejectUnknownKeys();
+        e.rotation = makeSimilarity(1.0, axis, degrees, Vec3(0.0)).rotation;
+    }
+    n.rejectUnknownKeys();
+    return e;
 }
 
 DensityDesc parseDensity(Node n, const std::filesystem::path& sceneFile) {
@@ -231,6 +247,7 @@ RenderDesc parseRender(Node n) {
         r.method = n.child("method").string();
     }
     if (n.has("surface")) r.surface = n.child("surface").boolean();
+    if (n.has("background")) r.background = n.child("background").boolean();
     n.rejectUnknownKeys();
     return r;
 }
@@ -272,7 +289,17 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
     if (lights.arraySize() > kMaxLights)
         lights.fail("holds " + std::to_string(lights.arraySize()) + " lights; at most " + std::to_string(kMaxLights) +
                     " are supported (docs/robustness.md)");
-    for (size_t i = 0; i < lights.arraySize(); ++i) scene.lights.push_back(parseLight(lights.element(i)));
+    for (size_t i = 0; i < lights.arraySize(); ++i) {
+        Node light = lights.element(i);
+        light.requireObject();
+        if (light.has("type") && light.child("type").json().is_string() &&
+            light.child("type").string() == "environment") {
+            if (scene.environment) light.fail("a second environment light; a scene has at most one");
+            scene.environment = parseEnvironment(light, file);
+        } else {
+            scene.lights.push_back(parseLight(light));
+        }
+    }
     Node objects = root.child("objects");
     if (objects.arraySize() == 0) objects.fail("must hold at least one object");
     for (size_t i = 0; i < objects.arraySize(); ++i)

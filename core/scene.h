@@ -86,13 +86,25 @@ struct ObjectDesc {
 struct RenderDesc {
     std::string method = "auto";
     bool surface = true;
+    // Whether the environment reaches the camera unscattered: behind the
+    // objects, through them (attenuated) and reflected off a refracting
+    // boundary. false: only the light the media scatter, and the surface term.
+    bool background = false;
+};
+
+// The scene's environment light (core/environment_map.h holds the map's convention).
+struct EnvironmentDesc {
+    std::filesystem::path file;  // equirectangular .hdr or .exr
+    double scale = 1.0;          // multiplies the map's radiance
+    glm::dmat3 rotation{1.0};    // the map's directions to the world's
 };
 
 struct SceneDesc {
     std::filesystem::path file;
     std::string units;  // "mm", "cm", "m", or empty: lengths and coefficients per scene unit
     Camera camera;
-    std::vector<Light> lights;
+    std::vector<Light> lights;                   // point, spot and directional
+    std::optional<EnvironmentDesc> environment;  // at most one
     std::vector<ObjectDesc> objects;
     RenderDesc render;
 };

@@ -26,6 +26,7 @@ protected:
     explicit GridMethod(const MethodOptions& options)
         : ss_(SsOptions::from(options)), resolution_(options.integer("grid")) {}
     int resolution() const { return resolution_; }
+    int environmentLights() const { return ss_.environmentLights; }
     // One grid per object of the scene, in order, each reported on one line;
     // device receives the OpenCL device's name.
     virtual std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,

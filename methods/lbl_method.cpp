@@ -36,7 +36,7 @@ std::vector<ScatteringGrid> LblMethod::solveGrids(const LoadedScene& scene, cons
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {
         hybrid::HybridStats stats;
-        grids.push_back(solver.solve(object, scene.desc.lights, hs, &stats));
+        grids.push_back(solver.solve(object, scene.lightsWithEnvironment(environmentLights()), hs, &stats));
         const auto& d = grids.back().dims;
         std::fprintf(stderr,
                      "lucent: lbl: object '%s': %dx%dx%d voxels, %zu rays, %d lattice steps%s in %.2f s "

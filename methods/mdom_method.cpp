@@ -53,7 +53,8 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {
         hybrid::MdomStats stats;
-        grids.push_back(solver.solve(object, scene.desc.lights, ms, &stats).towards(scene.desc.camera.position));
+        grids.push_back(solver.solve(object, scene.lightsWithEnvironment(environmentLights()), ms, &stats)
+                            .towards(scene.desc.camera.position));
         const auto& d = grids.back().dims;
         std::fprintf(stderr,
                      "lucent: mdom: object '%s': %dx%dx%d voxels, %d directions, %d moments, %d iterations%s: direct "

@@ -11,6 +11,7 @@
 #include "core/camera_rays.h"
 #include "core/progress.h"
 #include "reference/light_arrival.h"
+#include "reference/quadrature.h"
 #include "reference/path_channels.h"
 #include "core/refraction.h"
 #include "reference/surface_reflection.h"
@@ -59,8 +60,12 @@ Vec3 sampleHenyeyGreenstein(const Vec3& dir, double g, double xi1, double xi2) {
     return glm::normalize(cosTheta * dir + sinTheta * (std::cos(phi) * t1 + std::sin(phi) * t2));
 }
 
-PathTracer::PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects)
-    : scene_(scene), objects_(objects) {
+PathTracer::PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
+                       const EnvironmentMap* environment)
+    : scene_(scene),
+      objects_(objects),
+      environment_(environment),
+      surfaceLights_(withEnvironmentLights(scene.lights, environment, kReferenceEnvironmentDirections)) {
     for (const VolumeObject& o : objects_) {
         const Rgb& s = o.desc().medium.sigmaT;
         grey_ = grey_ && s.r == s.g && s.g == s.b;
@@ -110,6 +115,12 @@ std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const
 }
 
 Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const {
+    Rgb sum = gatherSceneLights(object, x, dir, rng);
+    if (environment_) sum += gatherEnvironment(object, x, dir, rng);
+    return sum;
+}
+
+Rgb PathTracer::gatherSceneLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const {
     Rgb sum(0.0);
     for (const Light& light : scene_.lights) {
         // A sphere light: one direction of its cone at random (only then: other scenes keep their random stream).
@@ -123,11 +134,39 @@ Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Ve
     return sum;
 }
 
+namespace {
+
+// The power heuristic with exponent 2 (Veach 1997, 9.2.4).
+double powerHeuristic(double pdf, double other) {
+    const double a = pdf * pdf, b = other * other;
+    return a + b > 0.0 ? a / (a + b) : 0.0;
+}
+
+}  // namespace
+
+Rgb PathTracer::gatherEnvironment(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const EnvironmentMap::Sample s = environment_->sample(u1, u2);
+    if (!(s.pdf > 0.0) || magnitude(s.radiance) == 0.0) return Rgb(0.0);
+    const double phase = henyeyGreenstein(glm::dot(s.toward, dir), object.desc().medium.g);
+    const LightArrival arrival{s.toward, kInfinity, s.radiance};
+    // The phase function draws the same direction with density phase (sampleHenyeyGreenstein).
+    return phase * s.radiance * transmittanceToLight(objects_, x, arrival) * (powerHeuristic(s.pdf, phase) / s.pdf);
+}
+
+Rgb PathTracer::escaped(const Vec3& previous, const Vec3& w, double g, bool scattered, bool weighed) const {
+    if (!environment_ || (!scattered && !scene_.render.background)) return Rgb(0.0);
+    const Rgb L = environment_->radiance(w);
+    if (!scattered || !weighed) return L;
+    // Drawn by the phase function around the previous direction: weighed against gatherEnvironment.
+    return L * powerHeuristic(henyeyGreenstein(glm::dot(w, previous), g), environment_->pdf(w));
+}
+
 Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
                             int channel) const {
     // At the first front face before any blocker, as the reference adds it.
     if (!settings.surface || !scene_.render.surface) return Rgb(0.0);
-    const Rgb total = firstSurfaceReflection(objects_, scene_.lights, origin, dir, tStop);
+    const Rgb total = firstSurfaceReflection(objects_, surfaceLights_, origin, dir, tStop);
     return masked(total, channel);
 }
 
@@ -144,11 +183,18 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, 
     double tStop = blockerDistance(origin, dir);
     Rgb total = surfaceTerm(origin, dir, tStop, settings, channel);
     const VolumeObject* inside = containing(origin);
-    Vec3 x = origin, w = dir;
+    Vec3 x = origin, w = dir, previous = dir;
     Rgb throughput(1.0);
-    for (int collisions = 0; collisions < settings.maxScatter; ++collisions) {
+    for (int collisions = 0;; ++collisions) {
         const std::optional<Collision> c = sampleCollision(x, w, tStop, inside, rng, channel);
-        if (!c) break;
+        if (!c) {
+            if (tStop == kInfinity)
+                total +=
+                    throughput *
+                    masked(escaped(previous, w, inside ? inside->desc().medium.g : 0.0, collisions > 0, true), channel);
+            break;
+        }
+        if (collisions == settings.maxScatter) break;
         x += c->t * w;
         inside = c->object;
         // Free flights sampled in proportion to sigma_t T leave the albedo as the
@@ -162,6 +208,7 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, 
             throughput /= keep;
         }
         const double xi1 = rng.uniform(), xi2 = rng.uniform();
+        previous = w;
         w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
         tStop = blockerDistance(x, w);
     }

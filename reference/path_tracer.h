@@ -19,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/environment_map.h"
 #include "core/image.h"
 #include "reference/path_sampler.h"
 #include "core/scene.h"
@@ -44,7 +45,11 @@ struct PathSettings {
 
 class PathTracer {
 public:
-    PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects);
+    // environment: the scene's environment light, or none. Collisions sample it
+    // and the phase function both, weighed by the power heuristic (multiple
+    // importance sampling, Veach 1997 ch. 9); paths that leave the media see it.
+    PathTracer(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
+               const EnvironmentMap* environment = nullptr);
 
     struct Result {
         Image mean;               // radiance per pixel
@@ -110,9 +115,20 @@ private:
     double blockerDistance(const Vec3& origin, const Vec3& dir) const;
     // sum_j p(w_j, dir) E_j T_j at x: the light arriving at x, scattered along dir.
     Rgb gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const;
+    // gatherLights without the environment.
+    Rgb gatherSceneLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const;
+    // The environment's share of the light at x scattered along dir, from one
+    // direction drawn from the map, with its multiple importance weight.
+    Rgb gatherEnvironment(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const;
+    // What a path that leaves every medium along w sees of the environment:
+    // after a collision, with the weight that pairs it with gatherEnvironment;
+    // straight from the camera, only with the scene's background on.
+    Rgb escaped(const Vec3& previous, const Vec3& w, double g, bool scattered, bool weighed) const;
 
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;
+    const EnvironmentMap* environment_ = nullptr;
+    std::vector<Light> surfaceLights_;  // the surface term's: the scene's and the environment's, as the reference's
     bool grey_ = true;
     bool refracting_ = false;  // some object's ior differs from 1
 };

@@ -1,5 +1,7 @@
 #include "reference/reference_method.h"
 
+#include <algorithm>
+
 #include "core/sphere_light.h"
 #include "reference/path_method.h"
 #include "reference/reference_renderer.h"
@@ -18,6 +20,12 @@ std::unique_ptr<Method> ReferenceMethod::create(const MethodOptions& options) {
 std::vector<std::string> ReferenceMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
     std::vector<std::string> out = overlappingRefractors(scene, "the reference");
     for (std::string& line : sphereLightsThroughBoundaries(scene.desc)) out.push_back(std::move(line));
+    if (scene.environment && scene.desc.render.background &&
+        std::any_of(scene.objects.begin(), scene.objects.end(),
+                    [](const VolumeObject& o) { return o.desc().medium.ior != 1.0; }))
+        out.push_back(
+            "the environment: the reference draws no background in a scene with a refracting boundary (--method "
+            "path does)");
     return out;
 }
 
@@ -26,7 +34,7 @@ Image ReferenceMethod::render(const LoadedScene& scene, const MethodSettings& se
     reference.tolerance = tolerance_;
     reference.surface = settings.surface;
     reference.threads = settings.threads;
-    return ReferenceRenderer(scene.desc, scene.objects).render(reference);
+    return ReferenceRenderer(scene.desc, scene.objects, scene.environment.get()).render(reference);
 }
 
 }  // namespace lucent

@@ -66,8 +66,7 @@ Rgb ReferenceRenderer::followRefracted(const Vec3& x, const Vec3& w, const Volum
         const bool refracts = o.desc().medium.ior != 1.0;
         auto integrand = [&](double t) -> Rgb {
             const Vec3 p = x + t * w;
-            const Rgb lights =
-                refracts ? lightsThroughBoundary(o, objects_, scene_.lights, p, w) : straightLights(o, p, w);
+            const Rgb lights = refracts ? lightsThroughBoundary(o, objects_, lights_, p, w) : straightLights(o, p, w);
             return transmittance(sigmaT, o.densityPath(x, w, t)) * o.scattering(p) * lights;
         };
         const double sigmaMax = largest(sigmaT) * o.density().maximum();

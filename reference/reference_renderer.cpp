@@ -17,8 +17,12 @@
 
 namespace lucent {
 
-ReferenceRenderer::ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects)
-    : scene_(scene), objects_(objects) {
+ReferenceRenderer::ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
+                                     const EnvironmentMap* environment)
+    : scene_(scene),
+      objects_(objects),
+      environment_(environment),
+      lights_(withEnvironmentLights(scene.lights, environment, kReferenceEnvironmentDirections)) {
     for (const VolumeObject& o : objects_) refracting_ = refracting_ || o.desc().medium.ior != 1.0;
 }
 
@@ -38,7 +42,7 @@ Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, co
 
 Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
     Rgb sum(0.0);
-    for (const Light& light : scene_.lights) {
+    for (const Light& light : lights_) {
         // A sphere light's cone on a grid of strata (the midpoint rule in solid angle).
         const int strata = light.radius > 0.0 ? kSphereLightStrata : 1;
         for (int k = 0; k < strata * strata; ++k) {
@@ -59,7 +63,7 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
     double tStop = kInfinity;
     for (const auto& o : objects_) tStop = std::min(tStop, o.firstBlockerHit(origin, dir));
     const Rgb surface = settings.surface && scene_.render.surface
-                            ? firstSurfaceReflection(objects_, scene_.lights, origin, dir, tStop)
+                            ? firstSurfaceReflection(objects_, lights_, origin, dir, tStop)
                             : Rgb(0.0);
     if (refracting_) return surface + refractedRadiance(origin, dir, settings);
 
@@ -95,6 +99,9 @@ Rgb ReferenceRenderer::radiance(const Vec3& origin, const Vec3& dir, const Refer
             total += integrateIntoDenseMedium(integrand, seg.span.t0, seg.span.t1, sigmaMax, settings.tolerance);
         tauBefore += sigmaT * o.density().integrate(entry, origin + seg.span.t1 * dir);
     }
+    // The environment behind, seen through every object on the way.
+    if (environment_ && scene_.render.background && tStop == kInfinity)
+        total += environment_->radiance(dir) * glm::exp(-tauBefore);
     return total + surface;
 }
 

@@ -12,10 +12,16 @@
 // point through the boundary as the path tracer's next-event estimation finds
 // it (core/refraction.h). It is then what `--method path --max-scatter 1`
 // converges to, without its noise.
+//
+// An environment light enters as kReferenceEnvironmentDirections (light_arrival.h) directional
+// lights drawn from its map (EnvironmentMap::asDirectionalLights): a
+// quasi-Monte Carlo quadrature of the sphere, the same at every point.
 #include <vector>
 
+#include "core/environment_map.h"
 #include "core/image.h"
 #include "core/scene.h"
+#include "reference/light_arrival.h"
 #include "core/volume_object.h"
 
 namespace lucent {
@@ -35,7 +41,8 @@ struct ReferenceSettings {
 
 class ReferenceRenderer {
 public:
-    ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects);
+    ReferenceRenderer(const SceneDesc& scene, const std::vector<VolumeObject>& objects,
+                      const EnvironmentMap* environment = nullptr);
     Image render(const ReferenceSettings& settings) const;
     // Radiance along one ray (exposed for tests).
     Rgb radiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
@@ -55,7 +62,9 @@ private:
 
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;
-    bool refracting_ = false;  // some object's ior differs from 1
+    const EnvironmentMap* environment_;
+    std::vector<Light> lights_;  // the scene's and the environment's
+    bool refracting_ = false;    // some object's ior differs from 1
 };
 
 }  // namespace lucent

@@ -48,7 +48,8 @@ double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const 
 
 Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir,
                                       PathSampler& rng) const {
-    if (object.desc().medium.ior == 1.0) return gatherLights(object, x, dir, rng);
+    // The lights only: in a refracting scene the environment is met by escaping paths alone.
+    if (object.desc().medium.ior == 1.0) return gatherSceneLights(object, x, dir, rng);
     return lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
 }
 
@@ -95,7 +96,14 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
             w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
             continue;
         }
-        if (!a.boundary || a.blocked) break;  // escapes, or a blocker absorbs it
+        if (a.blocked) break;  // a blocker absorbs it
+        if (!a.boundary) {
+            // It leaves: the environment is sampled by no collision here (the
+            // lights through a boundary are, the environment is not), so this
+            // is its whole estimate, unweighed.
+            total += throughput * masked(escaped(w, w, 0.0, collisions > 0, false), channel);
+            break;
+        }
         x = a.boundary->point;
         throughput *= cross(*a.boundary, *a.object, w, inside, rng);
         ++events;

@@ -75,17 +75,21 @@ struct SsMethod::Retiring {
 };
 
 std::vector<OptionSpec> SsOptions::specs() {
-    return {OptionSpec::choice("light", "traced", {"traced", "sh"},
-                               "the light reaching each sample traced through the objects (and refracted at their "
-                               "boundary), or read from its SH attenuation (sh: the thesis; blurs narrow shadows, no "
-                               "shadows between objects, boundaries index-matched)"),
-            OptionSpec::choice("backend", "auto", {"auto", "egl", "osmesa"},
-                               "the OpenGL backend (auto: EGL, then OSMesa)")};
+    return {
+        OptionSpec::choice("light", "traced", {"traced", "sh"},
+                           "the light reaching each sample traced through the objects (and refracted at their "
+                           "boundary), or read from its SH attenuation (sh: the thesis; blurs narrow shadows, no "
+                           "shadows between objects, boundaries index-matched)"),
+        OptionSpec::choice("backend", "auto", {"auto", "egl", "osmesa"}, "the OpenGL backend (auto: EGL, then OSMesa)"),
+        OptionSpec::integer("env-lights", SsOptions().environmentLights, 1, 128,
+                            "directional lights an environment light is drawn as, drawn from its map by "
+                            "importance; time grows with them")};
 }
 
 SsOptions SsOptions::from(const MethodOptions& options) {
     const std::string& backend = options.choice("backend");
-    return {options.choice("light") == "traced", backend == "auto" ? std::string() : backend};
+    return {options.choice("light") == "traced", backend == "auto" ? std::string() : backend,
+            options.integer("env-lights")};
 }
 
 SsMethod::SsMethod(SsOptions options) : options_(std::move(options)) {}
@@ -145,6 +149,10 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
 
 std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, const SsOptions& options) {
     std::vector<std::string> out = sphereLightsThroughBoundaries(scene.desc);
+    if (scene.environment && scene.desc.render.background)
+        out.push_back(
+            "the environment: ss, lbl and mdom draw the light the media scatter, but not the environment behind "
+            "the objects or through them (\"background\": true; --method path and reference draw it)");
     for (size_t j = 0; j < scene.desc.lights.size() && !options.tracedLight; ++j)
         if (scene.desc.lights[j].radius > 0.0)
             out.push_back("light " + std::to_string(j) +
@@ -271,7 +279,7 @@ Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& set
     for (size_t i = 0; i < scene.objects.size(); ++i)
         renderer.addObject(translucentObjectFor(scene.objects[i], scene.samples[i]));
     for (const ScatteringGrid& g : grids) renderer.addScatteringGrid(g);
-    renderer.setLights(scene.desc.lights);
+    renderer.setLights(scene.lightsWithEnvironment(ssOptions.environmentLights));
     frame.bindAndClear();
     DrawOptions options;
     options.surface = settings.surface;

@@ -10,7 +10,10 @@ namespace lucent {
 struct SsOptions {
     bool tracedLight = true;  // each sample's light traced, not read from its SH (DrawOptions::tracedLight)
     std::string backend;      // "egl", "osmesa" or "" (EGL, then OSMesa)
-    // --light and --backend.
+    // An environment light is drawn as this many directional lights, drawn from its map
+    // (EnvironmentMap::asDirectionalLights); lbl and mdom solve their grids for them too.
+    int environmentLights = 64;
+    // --light, --backend and --env-lights.
     static std::vector<OptionSpec> specs();
     static SsOptions from(const MethodOptions& options);
 };

@@ -23,6 +23,8 @@ packages=(
   libxxhash-dev
   # image output
   libpng-dev libopenexr-dev
+  # environment maps: Radiance .hdr (stb_image; .exr through OpenEXR above)
+  libstb-dev
   # OpenGL: EGL and OSMesa on Mesa's llvmpipe (libgl1-mesa-dri is what EGL needs
   # and nothing depends on), the glad loader generator, GLFW + Dear ImGui for the
   # viewer, Xvfb to test the viewer without a display

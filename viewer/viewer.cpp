@@ -527,7 +527,18 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
     LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
-    Viewer(scene, options, std::move(script), loaded, method.name).run();
+    // The environment enters the viewer as ss draws it: directional lights drawn
+    // from its map, listed with the others (docs/scene-file.md).
+    SceneDesc shown = scene;
+    if (loaded.environment) {
+        const int count = SsOptions().environmentLights;
+        shown.lights = loaded.lightsWithEnvironment(count);
+        std::fprintf(stderr,
+                     "lucent: warning: the environment is drawn as %zu directional lights after the scene's %zu: "
+                     "they move and scale one by one, not as one map\n",
+                     shown.lights.size() - scene.lights.size(), scene.lights.size());
+    }
+    Viewer(shown, options, std::move(script), loaded, method.name).run();
 }
 
 }  // namespace lucent

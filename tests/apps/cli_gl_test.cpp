@@ -376,6 +376,18 @@ TEST_F(BadInput, FifosAndDevicesAreRefusedNotWaitedOn) {
                   "cannot read viewer script: it is a FIFO");
 }
 
+// An environment map that is no map, or that ends early: one line naming it, no image.
+TEST_F(BadInput, AnEnvironmentMapThatIsNoneIsRefusedNamingIt) {
+    std::string text = scene((test::modelsDir() / "sphere.obj").string());
+    text.replace(text.find("\"lights\": ["), 11, R"("lights": [{"type": "environment", "file": "sky.hdr"}, )");
+    const std::string s = dir.write("scene.json", text).string();
+    dir.write("sky.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n");
+    expectFailure("render " + s + " --method path -o x.png", "sky.hdr: Radiance HDR file ends before its last texel",
+                  "x.png");
+    dir.write("sky.hdr", "GIF89a");
+    expectFailure("render " + s + " --method reference -o x.png", "sky.hdr: not a Radiance HDR", "x.png");
+}
+
 // Class 4 and 8: every number on the command line is finite and in range.
 TEST_F(BadInput, NumbersOnTheCommandLineAreFiniteAndInRange) {
     const std::string s = dir.write("scene.json", scene("m.obj")).string();
