@@ -138,18 +138,7 @@ TEST(EnvironmentMap, AMapOfOneRadianceIsSampledOverTheWholeSphere) {
     EXPECT_TRUE(black.asDirectionalLights(16).empty());
 }
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error";
-    return {};
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
+using test::errorOf;
 
 EnvironmentDesc fileDesc(const std::filesystem::path& file) {
     EnvironmentDesc d;

@@ -21,19 +21,7 @@
 namespace lucent {
 namespace {
 
-// The message of the Error f throws (fails the test if it throws none).
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error";
-    return {};
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
+using test::errorOf;
 
 std::string sceneWith(const std::string& camera, const std::string& light, const std::string& mesh,
                       const std::string& medium = R"("sigma_t": 2, "albedo": 0.5)") {

@@ -1,14 +1,31 @@
 #pragma once
 // Helpers shared by the test suites: a scratch directory per test, small files,
 // and running the lucent binary.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/scene.h"
 #include "core/triangle_mesh.h"
 
 namespace lucent::test {
+
+// The message of the Error f throws (fails the test if it throws none).
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no error";
+    return {};
+}
+
+#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
 
 // A fresh directory under the system temp dir, removed when the object dies.
 class ScratchDir {
