@@ -24,10 +24,6 @@ struct LightArrival {
 // with the light of the whole cone: averaged over (u, v) it is the sphere's.
 std::optional<LightArrival> lightArrivingAt(const Light& light, const Vec3& x, double u = 0.5, double v = 0.5);
 
-// Directions the reference integrates an environment over (as directional
-// lights drawn from its map), and the path tracer's surface term reflects.
-inline constexpr int kReferenceEnvironmentDirections = 256;
-
 // The reference integrates a sphere light's cone on this many strata per axis.
 inline constexpr int kSphereLightStrata = 8;
 

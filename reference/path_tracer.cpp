@@ -12,6 +12,7 @@
 #include "core/progress.h"
 #include "reference/light_arrival.h"
 #include "reference/quadrature.h"
+#include "reference/reference_renderer.h"
 #include "reference/path_channels.h"
 #include "core/refraction.h"
 #include "reference/surface_reflection.h"

@@ -13,7 +13,7 @@
 // it (core/refraction.h). It is then what `--method path --max-scatter 1`
 // converges to, without its noise.
 //
-// An environment light enters as kReferenceEnvironmentDirections (light_arrival.h) directional
+// An environment light enters as kReferenceEnvironmentDirections directional
 // lights drawn from its map (EnvironmentMap::asDirectionalLights): a
 // quasi-Monte Carlo quadrature of the sphere, the same at every point.
 #include <vector>
@@ -21,7 +21,6 @@
 #include "core/environment_map.h"
 #include "core/image.h"
 #include "core/scene.h"
-#include "reference/light_arrival.h"
 #include "core/volume_object.h"
 
 namespace lucent {
@@ -32,6 +31,10 @@ namespace lucent {
 // diagonal) against the closed form of an optically thick medium: at sigma_t 1e6
 // 0.03% off, at 3e6 0.5%, at 1e7 3.7%.
 inline constexpr double kMaxResolvedOpticalSize = 4e6;
+
+// Directions the reference integrates an environment over (as directional
+// lights drawn from its map), and the path tracer's surface term reflects.
+inline constexpr int kReferenceEnvironmentDirections = 256;
 
 struct ReferenceSettings {
     double tolerance = 1e-3;  // relative error target of each pixel's integral

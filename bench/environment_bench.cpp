@@ -1,0 +1,183 @@
+// Environment benchmark (issue 42): what an environment light costs each method
+// against the scene's point light, and how close each method draws it to the
+// path tracer. The environment is a sky with a sun, made here: a blue sky above
+// the horizon, a dim ground below, and a sun of 2 x 2 texels from where the
+// scene's point light stands, giving the object's centre the point light's
+// irradiance there (the sky adds a tenth of it again).
+//
+//   build/bin/lucent-bench-environment [--models sphere,bunny] [--size N] [--spp N] [--repeats N]
+//                                      [--frame-size N] [--record docs/results/environment.md]
+//
+// Per model and light: ss against --method reference (single scattering), ss,
+// lbl and mdom against --method path (rendered twice, its noise taken out),
+// every method's whole render (the median of the repeats), and ss's frame drawn
+// again with the light cached (the viewer's frame), all with default options.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "bench/path_truth.h"
+#include "bench/results_record.h"
+#include "core/atomic_file.h"
+#include "core/environment_map.h"
+#include "core/error.h"
+#include "core/image_compare.h"
+#include "core/loaded_scene.h"
+#include "core/statistics.h"
+#include "core/stopwatch.h"
+#include "methods/method_table.h"
+#include "preprocess/preprocessor.h"
+#include "runtime/offscreen_context.h"
+#include "runtime/offscreen_frame.h"
+#include "runtime/opengl.h"
+#include "runtime/scattering_renderer.h"
+#include "runtime/ss_method.h"
+
+using namespace lucent;
+
+namespace {
+
+// The sky with a sun from the direction toSun, the sun's irradiance E.
+std::shared_ptr<const EnvironmentMap> skyWithSun(const Vec3& toSun, double E) {
+    const int width = 128, height = 64;
+    const double t = std::acos(std::clamp(toSun.y, -1.0, 1.0));
+    double p = std::atan2(-toSun.z, toSun.x);
+    if (p < 0.0) p += 2.0 * kPi;
+    const int sx = std::clamp(int(p / (2.0 * kPi) * width), 0, width - 2);
+    const int sy = std::clamp(int(t / kPi * height), 0, height - 2);
+    double sunSolidAngle = 0.0;
+    for (int y = sy; y < sy + 2; ++y)
+        sunSolidAngle += 2.0 * 2.0 * kPi / width * (std::cos(kPi * y / height) - std::cos(kPi * (y + 1) / height));
+    // A sky of uniform radiance over the upper hemisphere gives pi L on a face
+    // looking up: a tenth of the sun's irradiance.
+    const double sky = 0.1 * E / kPi;
+    Image image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            image.at(x, y) = y < height / 2 ? glm::vec3(glm::dvec3(0.6, 0.9, 1.6) * sky)
+                                            : glm::vec3(glm::dvec3(0.3, 0.25, 0.2) * sky);
+    for (int y = sy; y < sy + 2; ++y)
+        for (int x = sx; x < sx + 2; ++x) image.at(x, y) = glm::vec3(float(E / sunSolidAngle));
+    return std::make_shared<const EnvironmentMap>(image, 1.0, glm::dmat3(1.0));
+}
+
+double medianRenderSeconds(const std::string& method, const LoadedScene& loaded, const MethodSettings& settings,
+                           int repeats, Image* image) {
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+        Stopwatch stopwatch;
+        Image rendered = renderWith(findMethod(method), loaded, settings);
+        times.push_back(stopwatch.seconds());
+        if (r == 0 && image) *image = std::move(rendered);
+    }
+    return median(times);
+}
+
+// ss's frame drawn again with its light cached, in ms (the median of frames).
+double ssFrameMs(const LoadedScene& loaded, int frameSize, int frames) {
+    const auto context = OffscreenContext::create(GlBackend::Auto);
+    OffscreenFrame frame(frameSize, frameSize);
+    ScatteringRenderer renderer;
+    renderer.addObject(translucentObjectFor(loaded.objects[0], loaded.samples[0]));
+    renderer.setLights(loaded.lightsWithEnvironment(SsOptions().environmentLights));
+    Camera camera = loaded.desc.camera;
+    camera.width = camera.height = frameSize;
+    const ViewSetup view = viewSetupFor(camera, loaded.bounds());
+    DrawOptions options;
+    options.surface = false;
+    return 1e3 * medianFrameSeconds(
+                     3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
+}
+
+struct Row {
+    double ssSingle = 0, ss = 0, lbl = 0, mdom = 0, noise = 0;
+    double ssSeconds = 0, lblSeconds = 0, mdomSeconds = 0, referenceSeconds = 0, pathSeconds = 0, frameMs = 0;
+};
+
+Row measure(const LoadedScene& loaded, int spp, int repeats, int frameSize) {
+    MethodSettings settings;
+    settings.surface = false;
+    Row row;
+    const PathTruth truth = pathTruth(loaded, settings, spp);
+    row.pathSeconds = truth.seconds;
+    Image reference, ss, lbl, mdom;
+    row.referenceSeconds = medianRenderSeconds("reference", loaded, settings, 1, &reference);
+    row.ssSeconds = medianRenderSeconds("ss", loaded, settings, repeats, &ss);
+    row.lblSeconds = medianRenderSeconds("lbl", loaded, settings, repeats, &lbl);
+    row.mdomSeconds = medianRenderSeconds("mdom", loaded, settings, repeats, &mdom);
+    row.frameMs = ssFrameMs(loaded, frameSize, 20);
+    row.ssSingle = luminanceRelativeRmse(ss, reference);
+    const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, truth.a, truth.b);
+    row.noise = lblError.noise;
+    row.lbl = lblError.debiased;
+    row.ss = luminanceRelativeRmse(ss, truth.a, truth.b).debiased;
+    row.mdom = luminanceRelativeRmse(mdom, truth.a, truth.b).debiased;
+    return row;
+}
+
+void environmentTable(ResultsRecord& out, const std::vector<std::string>& models, int size, int spp, int repeats,
+                      int frameSize) {
+    out.print(
+        "relative RMSE of luminance, %dx%d, no surface term, default options (--env-lights %d): ss against "
+        "--method reference, and ss, lbl and mdom against --method path at %d paths per pixel (its noise taken "
+        "out); whole renders in s (the median of %d; reference and path once), ss's frame at %dx%d in ms with the "
+        "light cached (the median of 20)\n\n",
+        size, size, SsOptions().environmentLights, spp, repeats, frameSize, frameSize);
+    out.tableHeader({"model", "light", "path noise", "ss vs single", "ss", "lbl", "mdom", "ss (s)", "lbl (s)",
+                     "mdom (s)", "reference (s)", "path (s)", "ss frame (ms)"},
+                    {false, false, true, true, true, true, true, true, true, true, true, true, true});
+    for (const std::string& model : models) {
+        SceneDesc scene = parseScene(std::string(LUCENT_SOURCE_DIR) + "/models/" + model + ".json");
+        scene.objects.resize(1);
+        scene.lights.resize(1);
+        scene.camera.width = scene.camera.height = size;
+        LoadedScene lit = loadScene(scene, false);
+        const SampleSet samples = preprocessObject(lit.objects[0], qualityPreset("default"));
+        attachSamples(lit, {samples});
+        const Light light = scene.lights[0];
+        const Vec3 centre = lit.bounds().center();
+        const double d = glm::length(light.position - centre);
+        Row rows[2];
+        rows[0] = measure(lit, spp, repeats, frameSize);
+        lit.environment = skyWithSun((light.position - centre) / d, light.power.g / (d * d));
+        lit.desc.lights.clear();
+        rows[1] = measure(lit, spp, repeats, frameSize);
+        for (int k = 0; k < 2; ++k) {
+            const Row& r = rows[k];
+            out.print("| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n",
+                      model.c_str(), k == 0 ? "point" : "sky with a sun", r.noise, r.ssSingle, r.ss, r.lbl, r.mdom,
+                      r.ssSeconds, r.lblSeconds, r.mdomSeconds, r.referenceSeconds, r.pathSeconds, r.frameMs);
+        }
+        const Row &p = rows[0], &e = rows[1];
+        out.print("| %s | environment / point | | | | | | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx |\n",
+                  model.c_str(), e.ssSeconds / p.ssSeconds, e.lblSeconds / p.lblSeconds, e.mdomSeconds / p.mdomSeconds,
+                  e.referenceSeconds / p.referenceSeconds, e.pathSeconds / p.pathSeconds, e.frameMs / p.frameMs);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Lucent environment benchmark: each method under a sky with a sun against one point light"};
+    std::vector<std::string> models{"sphere", "bunny"};
+    int size = 128, spp = 1024, repeats = 3, frameSize = 256;
+    app.add_option("--models", models, "Bundled models")->delimiter(',')->check(CLI::IsMember({"sphere", "bunny"}));
+    app.add_option("--size", size, "Image width and height")->check(CLI::Range(8, 2048));
+    app.add_option("--spp", spp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
+    app.add_option("--repeats", repeats, "Renders timed per method and row")->check(CLI::Range(1, 100));
+    app.add_option("--frame-size", frameSize, "Width and height of the timed ss frames")->check(CLI::Range(8, 2048));
+    std::string recordFile;
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
+        environmentTable(out, models, size, spp, repeats, frameSize);
+        if (!recordFile.empty()) out.write(recordFile);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "lucent-bench-environment: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
