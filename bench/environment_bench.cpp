@@ -12,6 +12,9 @@
 // lbl and mdom against --method path (rendered twice, its noise taken out),
 // every method's whole render (the median of the repeats), and ss's frame drawn
 // again with the light cached (the viewer's frame), all with default options.
+// Then, under the sky, the counts of directional lights the environment becomes:
+// ss's --env-lights against the reference, and the lights lbl's and mdom's grids
+// are solved for (kGridEnvironmentLights) against the path tracer.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -26,6 +29,9 @@
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
 #include "core/stopwatch.h"
+#include "hybrid/mdom_scattering.h"
+#include "hybrid/multiple_scattering.h"
+#include "methods/grid_method.h"
 #include "methods/method_table.h"
 #include "preprocess/preprocessor.h"
 #include "runtime/offscreen_context.h"
@@ -116,8 +122,59 @@ Row measure(const LoadedScene& loaded, int spp, int repeats, int frameSize) {
     return row;
 }
 
+// ss with count directional lights for the environment: its error against the
+// reference and the median of its whole renders.
+void ssCountRow(ResultsRecord& out, const std::string& model, const LoadedScene& sky, const Image& reference, int count,
+                int repeats) {
+    MethodSettings settings;
+    settings.surface = false;
+    const MethodEntry& ss = findMethod("ss");
+    const MethodOptions options = MethodOptions(ss.options).set("env-lights", count);
+    std::vector<double> times;
+    Image image;
+    for (int r = 0; r < repeats; ++r) {
+        Stopwatch stopwatch;
+        image = renderWith(ss, *ss.create(options), sky, settings);
+        times.push_back(stopwatch.seconds());
+    }
+    out.print("| %s | ss | %d | %.4f | %.2f |\n", model.c_str(), count, luminanceRelativeRmse(image, reference),
+              median(times));
+}
+
+// lbl's and mdom's grids solved for count of the environment's lights, drawn
+// with ss's default: their error against the path tracer and the solve's time.
+struct GridSolvers {
+    hybrid::MultipleScattering lbl;
+    hybrid::MdomScattering mdom;
+};
+
+void gridCountRows(ResultsRecord& out, GridSolvers& solvers, const std::string& model, const LoadedScene& sky,
+                   const PathTruth& truth, int count) {
+    MethodSettings settings;
+    settings.surface = false;
+    const std::vector<Light> lights = sky.lightsWithEnvironment(count);
+    std::string backend;
+    Stopwatch stopwatch;
+    const std::vector<ScatteringGrid> lbl = {solvers.lbl.solve(sky.objects[0], lights, hybrid::HybridSettings{})};
+    const double lblSeconds = stopwatch.seconds();
+    stopwatch.restart();
+    const std::vector<ScatteringGrid> mdom = {
+        solvers.mdom.solve(sky.objects[0], lights, hybrid::MdomSettings{}).towards(sky.desc.camera.position)};
+    const double mdomSeconds = stopwatch.seconds();
+    for (const auto& [name, grids, seconds] : {std::tuple{"lbl", &lbl, lblSeconds}, {"mdom", &mdom, mdomSeconds}}) {
+        const Image image = renderSingleScattering(sky, settings, SsOptions{}, *grids, backend);
+        out.print("| %s | %s | %d | %.4f | %.2f |\n", model.c_str(), name, count,
+                  luminanceRelativeRmse(image, truth.a, truth.b).debiased, seconds);
+    }
+}
+
+struct SkyScene {
+    std::string model;
+    LoadedScene scene;
+};
+
 void environmentTable(ResultsRecord& out, const std::vector<std::string>& models, int size, int spp, int repeats,
-                      int frameSize) {
+                      int frameSize, std::vector<SkyScene>& counts) {
     out.print(
         "relative RMSE of luminance, %dx%d, no surface term, default options (--env-lights %d): ss against "
         "--method reference, and ss, lbl and mdom against --method path at %d paths per pixel (its noise taken "
@@ -149,10 +206,34 @@ void environmentTable(ResultsRecord& out, const std::vector<std::string>& models
                       model.c_str(), k == 0 ? "point" : "sky with a sun", r.noise, r.ssSingle, r.ss, r.lbl, r.mdom,
                       r.ssSeconds, r.lblSeconds, r.mdomSeconds, r.referenceSeconds, r.pathSeconds, r.frameMs);
         }
+        counts.push_back({model, std::move(lit)});
         const Row &p = rows[0], &e = rows[1];
         out.print("| %s | environment / point | | | | | | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx |\n",
                   model.c_str(), e.ssSeconds / p.ssSeconds, e.lblSeconds / p.lblSeconds, e.mdomSeconds / p.mdomSeconds,
                   e.referenceSeconds / p.referenceSeconds, e.pathSeconds / p.pathSeconds, e.frameMs / p.frameMs);
+    }
+}
+
+void countsTable(ResultsRecord& out, std::vector<SkyScene>& skies, int spp, int repeats) {
+    out.print(
+        "\nunder the sky with a sun: ss with --env-lights N against --method reference (the median of %d whole "
+        "renders); lbl and mdom (default options) with their grids solved for N of the environment's lights "
+        "(the default: %d) and drawn with ss's default, against --method path at %d paths per pixel (its noise "
+        "taken out), and the solve's time, once\n\n",
+        repeats, kGridEnvironmentLights, spp);
+    out.tableHeader({"model", "method", "N", "error", "time (s)"}, {false, false, true, true, true});
+    MethodSettings settings;
+    settings.surface = false;
+    GridSolvers solvers;
+    for (SkyScene& sky : skies) {
+        // Untimed first: PoCL compiles each kernel for its launch shape on first use.
+        const std::vector<Light> one = sky.scene.lightsWithEnvironment(1);
+        solvers.lbl.solve(sky.scene.objects[0], one, hybrid::HybridSettings{});
+        solvers.mdom.solve(sky.scene.objects[0], one, hybrid::MdomSettings{});
+        const Image reference = renderWith(findMethod("reference"), sky.scene, settings);
+        for (int count : {8, 16, 32, 64, 128}) ssCountRow(out, sky.model, sky.scene, reference, count, repeats);
+        const PathTruth truth = pathTruth(sky.scene, settings, spp);
+        for (int count : {4, 8, 16, 64}) gridCountRows(out, solvers, sky.model, sky.scene, truth, count);
     }
 }
 
@@ -173,7 +254,9 @@ int main(int argc, char** argv) {
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        environmentTable(out, models, size, spp, repeats, frameSize);
+        std::vector<SkyScene> skies;
+        environmentTable(out, models, size, spp, repeats, frameSize, skies);
+        countsTable(out, skies, spp, repeats);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-environment: error: %s\n", e.what());

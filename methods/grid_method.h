@@ -15,11 +15,9 @@
 namespace lucent {
 
 // The grids take an environment as at most this many directional lights (ss's
-// --env-lights, up to it), since the light scattered twice or more is smooth.
-// Measured on the sphere (sigma_t 2, albedo 0.8) under a sky with a sun, 128x128,
-// against --method path at 4096 paths (its own noise 1.7%): lbl 16.2 / 3.3 / 3.5
-// / 2.6% and mdom 14.8 / 2.1 / 2.4 / 2.2% at 4 / 8 / 16 / 64 directions, with mdom's
-// time 8.0 / 9.3 / 11.2 / 13.7 s.
+// --env-lights, up to it), since the light scattered twice or more is smooth:
+// under a sky with a sun, 8 or 16 serve lbl and mdom as well as 64 and 4 are
+// 15% off (docs/results/environment.md, lucent-bench-environment).
 inline constexpr int kGridEnvironmentLights = 16;
 
 class GridMethod : public Method {

@@ -63,13 +63,13 @@ struct ScatteringGrids::Solvers {
 ScatteringGrids::ScatteringGrids(const LoadedScene& loaded) : solvers_(std::make_unique<Solvers>(loaded)) {}
 ScatteringGrids::~ScatteringGrids() = default;
 
-void ScatteringGrids::update(ViewerState& state, ScatteringRenderer& renderer) {
+void ScatteringGrids::update(ViewerState& state, ScatteringRenderer& renderer, const std::vector<Light>& lights) {
     using Multiple = ViewerState::Multiple;
-    if (state.multiple != shown_ || (shown_ != Multiple::Off && !valid_)) begin(state, renderer);
+    if (state.multiple != shown_ || (shown_ != Multiple::Off && !valid_)) begin(state, renderer, lights);
     if (shown_ == Multiple::Mdom) iterate(state, renderer);
 }
 
-void ScatteringGrids::begin(ViewerState& state, ScatteringRenderer& renderer) {
+void ScatteringGrids::begin(ViewerState& state, ScatteringRenderer& renderer, const std::vector<Light>& lights) {
     using Multiple = ViewerState::Multiple;
     renderer.clearScatteringGrids();
     shown_ = Multiple::Off;
@@ -85,7 +85,7 @@ void ScatteringGrids::begin(ViewerState& state, ScatteringRenderer& renderer) {
             hybrid::HybridSettings hs;
             hs.resolution = kViewerGridResolution;
             for (const VolumeObject* object : s.placedObjects.at(state.placements))
-                renderer.addScatteringGrid(s.lbl->solve(*object, state.lights, hs));
+                renderer.addScatteringGrid(s.lbl->solve(*object, lights, hs));
         } else {
             if (!s.mdom) s.mdom = std::make_unique<hybrid::MdomScattering>();
             hybrid::MdomSettings ms;
@@ -93,7 +93,7 @@ void ScatteringGrids::begin(ViewerState& state, ScatteringRenderer& renderer) {
             ms.directions = 24;
             s.mdomRuns.clear();
             for (const VolumeObject* object : s.placedObjects.at(state.placements))
-                s.mdomRuns.push_back(s.mdom->begin(*object, state.lights, ms));
+                s.mdomRuns.push_back(s.mdom->begin(*object, lights, ms));
             solving_ = true;
         }
         shown_ = state.multiple;
@@ -104,6 +104,7 @@ void ScatteringGrids::begin(ViewerState& state, ScatteringRenderer& renderer) {
         state.multiple = Multiple::Off;
     }
 #else
+    (void)lights;
     std::fprintf(stderr, "lucent: view: this build has no OpenCL: no multiple scattering\n");
     state.multiple = Multiple::Off;
 #endif

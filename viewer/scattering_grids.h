@@ -22,9 +22,9 @@ public:
     // The lights or the objects' placements changed: solve again on the next update.
     void invalidate() { valid_ = false; }
     // Before a frame: gives the renderer the grids state.multiple asks for,
-    // solved for state's lights, placements and eye. A solve that fails prints
-    // a warning and sets state.multiple to Off.
-    void update(ViewerState& state, ScatteringRenderer& renderer);
+    // solved for lights (state's and its environment's), state's placements and
+    // eye. A solve that fails prints a warning and sets state.multiple to Off.
+    void update(ViewerState& state, ScatteringRenderer& renderer, const std::vector<Light>& lights);
     // mdom still iterating (a script's `wait` waits for it).
     bool solving() const { return solving_; }
     // "mdom: iteration N", ", done" once converged; empty for lbl and off.
@@ -32,7 +32,7 @@ public:
 
 private:
     struct Solvers;  // OpenCL's, in a build with it
-    void begin(ViewerState& state, ScatteringRenderer& renderer);
+    void begin(ViewerState& state, ScatteringRenderer& renderer, const std::vector<Light>& lights);
     void iterate(ViewerState& state, ScatteringRenderer& renderer);
 
     std::unique_ptr<Solvers> solvers_;

@@ -12,12 +12,15 @@
 #include <sstream>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/environment_map.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/input_file.h"
 #include "core/loaded_scene.h"
 #include "core/statistics.h"
 #include "core/stopwatch.h"
+#include "core/limits.h"
+#include "methods/grid_method.h"
 #include "methods/method_table.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/offscreen_frame.h"
@@ -109,7 +112,25 @@ bool spotControls(SpotCone& cone) {
     return changed;
 }
 
+// The environment's scale and its turn about +y (docs/viewer.md).
+void environmentControls(ViewerState& state) {
+    ImGui::PushID("environment");
+    ImGui::Text("environment");
+    float scale = float(state.environmentScale), turn = float(state.environmentTurnDegrees);
+    if (ImGui::DragFloat("scale", &scale, 0.01f * std::max(scale, 0.01f), 0.0f, 1e9f, "%.3g")) {
+        state.environmentScale = std::max(0.0, double(scale));
+        state.lightsChanged = true;
+    }
+    if (ImGui::SliderFloat("turn about +y", &turn, -180.0f, 180.0f, "%.0f deg")) {
+        state.environmentTurnDegrees = turn;
+        state.lightsChanged = true;
+    }
+    ImGui::Separator();
+    ImGui::PopID();
+}
+
 void lightsPanel(ViewerState& state) {
+    if (state.hasEnvironment) environmentControls(state);
     for (size_t i = 0; i < state.lights.size(); ++i) {
         Light& light = state.lights[i];
         ImGui::PushID(int(i));
@@ -280,6 +301,14 @@ public:
         state_.tracedLight = SsOptions::from(MethodOptions(findMethod(methodName_).options)).tracedLight;
         for (size_t i = 0; i < loaded.objects.size(); ++i)
             renderer_.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
+        if (scene.environment) {
+            // At scale 1, so that any scale the panel or the script sets scales them.
+            EnvironmentDesc unscaled = *scene.environment;
+            unscaled.scale = 1.0;
+            const auto map = EnvironmentMap::load(unscaled);
+            environmentLights_ = map->asDirectionalLights(SsOptions().environmentLights);
+            gridEnvironmentLights_ = map->asDirectionalLights(kGridEnvironmentLights);
+        }
     }
 
     void run() {
@@ -359,7 +388,14 @@ private:
     // renderer, and the multiple scattering is solved again for them.
     void applyEdits() {
         if (state_.lightsChanged) {
-            renderer_.setLights(state_.lights);
+            // Lights added past the scene's limit, with the environment's, are taken back.
+            const size_t room = kMaxLights - environmentLights_.size();
+            if (state_.lights.size() > room) {
+                std::fprintf(stderr, "lucent: warning: view: at most %zu lights beside the environment's %zu\n", room,
+                             environmentLights_.size());
+                state_.lights.resize(room);
+            }
+            renderer_.setLights(withEnvironment(environmentLights_));
             state_.lightsChanged = false;
             grids_.invalidate();
         }
@@ -388,7 +424,7 @@ private:
             state_.placementsChanged = false;
             grids_.invalidate();  // solved for where the objects stood
         }
-        grids_.update(state_, renderer_);
+        grids_.update(state_, renderer_, withEnvironment(gridEnvironmentLights_));
     }
 
     // Told once each time an object's scale leaves (or re-enters) the size its samples serve.
@@ -508,6 +544,22 @@ private:
     ScatteringRenderer renderer_;
     // Multiple scattering: solved on the OpenCL device when asked for, again when the lights or objects move.
     ScatteringGrids grids_;
+    // The scene's environment at scale 1 as the directional lights ss draws it
+    // as, and as the fewer lbl and mdom solve for (methods/grid_method.h).
+    std::vector<Light> environmentLights_, gridEnvironmentLights_;
+
+    // The state's lights and, scaled and turned as the state says, the environment's.
+    std::vector<Light> withEnvironment(const std::vector<Light>& environment) const {
+        std::vector<Light> out = state_.lights;
+        const glm::dmat3 turn =
+            makeSimilarity(1.0, Vec3(0.0, 1.0, 0.0), state_.environmentTurnDegrees, Vec3(0.0)).rotation;
+        for (Light l : environment) {
+            l.direction = turn * l.direction;
+            l.power *= state_.environmentScale;
+            out.push_back(l);
+        }
+        return out;
+    }
     std::unique_ptr<OffscreenFrame> frame_;
     int frameWidth_ = 0, frameHeight_ = 0;
     double frameMs_ = 0.0;
@@ -527,18 +579,7 @@ void runViewer(const SceneDesc& scene, const ViewerOptions& options) {
         throw Error("lucent view: method '" + method.name + "' cannot run here: " + why);
     LoadedScene loaded = loadScene(scene, method.needsSamples);
     for (const auto& w : loaded.warnings) std::fprintf(stderr, "lucent: warning: %s\n", w.c_str());
-    // The environment enters the viewer as ss draws it: directional lights drawn
-    // from its map, listed with the others (docs/scene-file.md).
-    SceneDesc shown = scene;
-    if (loaded.environment) {
-        const int count = SsOptions().environmentLights;
-        shown.lights = loaded.lightsWithEnvironment(count);
-        std::fprintf(stderr,
-                     "lucent: warning: the environment is drawn as %zu directional lights after the scene's %zu: "
-                     "they move and scale one by one, not as one map\n",
-                     shown.lights.size() - scene.lights.size(), scene.lights.size());
-    }
-    Viewer(shown, options, std::move(script), loaded, method.name).run();
+    Viewer(scene, options, std::move(script), loaded, method.name).run();
 }
 
 }  // namespace lucent

@@ -124,6 +124,23 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
             throw Error(where,
                         "light property must be position, direction, colour, (a spot's) cone or (a point's) radius");
         state.lightsChanged = true;
+    } else if (command == "environment") {
+        if (!state.hasEnvironment) throw Error(where, "the scene has no environment light");
+        std::string what;
+        in >> what;
+        double v = 0.0;
+        if (what == "scale") {
+            if (!(in >> v) || !(v >= 0.0 && v <= kMaxMagnitude))
+                throw Error(where, "environment scale needs a number in [0, 1e30]");
+            state.environmentScale = v;
+        } else if (what == "turn") {
+            if (!(in >> v) || !std::isfinite(v) || std::abs(v) > 1e6)
+                throw Error(where, "environment turn needs degrees in [-1e6, 1e6]");
+            state.environmentTurnDegrees = v;
+        } else {
+            throw Error(where, "environment property must be scale or turn");
+        }
+        state.lightsChanged = true;
     } else if (command == "add") {
         std::string type;
         in >> type;

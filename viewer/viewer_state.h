@@ -11,7 +11,11 @@
 namespace lucent {
 
 struct ViewerState {
-    explicit ViewerState(const SceneDesc& scene) : camera(scene.camera), lights(scene.lights) {
+    explicit ViewerState(const SceneDesc& scene)
+        : camera(scene.camera),
+          lights(scene.lights),
+          hasEnvironment(scene.environment.has_value()),
+          environmentScale(scene.environment ? scene.environment->scale : 1.0) {
         for (const ObjectDesc& o : scene.objects) {
             placements.push_back(o.transform);
             iors.push_back(o.medium.ior);
@@ -21,6 +25,11 @@ struct ViewerState {
     }
     OrbitCamera camera;
     std::vector<Light> lights;
+    // The scene's environment light, drawn as ss draws it (directional lights
+    // drawn from its map): its scale, and a turn about +y on top of the scene's
+    // rotation, which `environment scale S`, `environment turn DEGREES` and the panel change.
+    bool hasEnvironment = false;
+    double environmentScale = 1.0, environmentTurnDegrees = 0.0;
     // Each object's placement, from the scene's transforms; the selected one is
     // what `move`, `rotate` and `scale` (and the panel) change.
     std::vector<Similarity> placements;

@@ -49,6 +49,50 @@ TEST(Viewer, ScriptedLightMoveChangesTheScreenshotWhereItShould) {
     EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(a, true));
 }
 
+// A Radiance file of width x height texels, flat (a width under 8 is never run-length encoded),
+// black but for texel (x, y) of radiance value.
+std::string radianceFile(int width, int height, int x, int y, double value) {
+    std::string text =
+        "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    int exponent = 0;
+    const double mantissa = std::frexp(value, &exponent);
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) {
+            const bool lit = i == x && j == y;
+            const char m = lit ? char(int(mantissa * 256.0)) : 0;
+            text += std::string{m, m, m, lit ? char(exponent + 128) : char(0)};
+        }
+    return text;
+}
+
+// The environment as ss draws it, scaled and turned live.
+TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
+    test::ScratchDir dir;
+    dir.write("sky.hdr", radianceFile(4, 2, 0, 0, 20.0));  // a sun above the horizon towards +x
+    const auto scene = dir.write("scene.json", R"({
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 64, "height": 64},
+      "lights": [{"type": "environment", "file": "sky.hdr"}],
+      "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                                                   R"(",
+                   "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}],
+      "render": {"surface": false}})");
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto lit = dir.path() / "lit.pfm", turned = dir.path() / "turned.pfm", dark = dir.path() / "dark.pfm";
+    const auto script =
+        dir.write("env.txt", "surface off\nscreenshot " + lit.string() + "\nenvironment turn 180\nscreenshot " +
+                                 turned.string() + "\nenvironment scale 0\nscreenshot " + dark.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const auto rendered = dir.path() / "ss.pfm";
+    ASSERT_EQ(test::runLucent("render " + scene.string() + " --method ss -o " + rendered.string()).exitCode, 0);
+    const Image a = readPfm(lit), b = readPfm(turned), c = readPfm(dark);
+    EXPECT_LT(compareImages(a, readPfm(rendered)).relativeRmse, 0.01);
+    EXPECT_GT(meanHalf(a, false), 1.5 * meanHalf(a, true));  // lit from +x
+    EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(b, false));  // turned half round: from -x
+    EXPECT_EQ(meanHalf(c, true) + meanHalf(c, false), 0.0);
+}
+
 // The panel is docked beside the view and never covers it: a screenshot with
 // the panel holds the view's own pixels to its right. Exposure is in stops: one
 // more doubles the displayed radiance.

@@ -144,5 +144,24 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
     }
 }
 
+TEST(ViewerScript, TheEnvironmentScalesAndTurns) {
+    SceneDesc scene = oneLight();
+    ViewerState without(scene);
+    EXPECT_THROW(applyScriptLine(without, "environment scale 2", "s:1"), Error);
+    scene.environment = EnvironmentDesc{"sky.hdr", 0.5, glm::dmat3(1.0)};
+    ViewerState state(scene);
+    EXPECT_TRUE(state.hasEnvironment);
+    EXPECT_EQ(state.environmentScale, 0.5);
+    state.lightsChanged = false;
+    applyScriptLine(state, "environment scale 3", "s:1");
+    applyScriptLine(state, "environment turn -90", "s:2");
+    EXPECT_EQ(state.environmentScale, 3.0);
+    EXPECT_EQ(state.environmentTurnDegrees, -90.0);
+    EXPECT_TRUE(state.lightsChanged);
+    for (const char* bad : {"environment scale -1", "environment scale nan", "environment scale 1e31",
+                            "environment turn inf", "environment spin 3", "environment"})
+        EXPECT_THROW(applyScriptLine(state, bad, "s:3"), Error) << bad;
+}
+
 }  // namespace
 }  // namespace lucent
