@@ -11,8 +11,10 @@ struct SsOptions {
     bool tracedLight = true;  // each sample's light traced, not read from its SH (DrawOptions::tracedLight)
     std::string backend;      // "egl", "osmesa" or "" (EGL, then OSMesa)
     // An environment light is drawn as this many directional lights, drawn from its map
-    // (EnvironmentMap::asDirectionalLights); lbl and mdom solve their grids for them too.
-    int environmentLights = 64;
+    // (EnvironmentMap::asDirectionalLights); lbl and mdom solve their grids for up to 16
+    // of them. 32: under a sky with a sun as close to the reference as 64 or 128, at
+    // half 64's time; 16 were twice as far (docs/results/environment.md).
+    int environmentLights = 32;
     // --light, --backend and --env-lights.
     static std::vector<OptionSpec> specs();
     static SsOptions from(const MethodOptions& options);

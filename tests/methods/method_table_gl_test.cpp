@@ -156,6 +156,16 @@ TEST(MethodTable, AutoTakesThePathTracerForARefractingBoundaryAtAnyAlbedo) {
     }
 }
 
+TEST(MethodTable, AutoTakesThePathTracerForAnEnvironmentsBackgroundAlone) {
+    SceneDesc scene = sceneWith(Rgb(0.8), 512);
+    scene.environment = EnvironmentDesc{};
+    EXPECT_NE(chooseMethod(scene).method, "path");  // the scattered light: any method draws it
+    scene.render.background = true;
+    const MethodChoice c = chooseMethod(scene);
+    EXPECT_EQ(c.method, "path") << c.reason;
+    EXPECT_NE(c.reason.find("background"), std::string::npos) << c.reason;
+}
+
 TEST(MethodTable, AutoSaysWhatItChoseAndWhy) {
     SceneDesc scene;
     const ResolvedMethod r = resolveMethod("auto", scene);
