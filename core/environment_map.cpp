@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/limits.h"
 
 namespace lucent {
 namespace {
@@ -69,11 +70,11 @@ void checkRadianceScanlines(const std::filesystem::path& file, const std::vector
 
 Image readRadianceHdr(const std::filesystem::path& file) {
     const uint64_t size = regularFileSize(file, "environment map");
+    if (size > uint64_t(INT32_MAX)) throw Error(file.string(), "environment map file larger than 2 GiB");
     std::vector<unsigned char> bytes(size);
     std::ifstream in(file, std::ios::binary);
     if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size)))
         throw Error(file.string(), "cannot read environment map");
-    if (size > uint64_t(INT32_MAX)) throw Error(file.string(), "environment map file larger than 2 GiB");
     const int length = int(size);
     if (!stbi_is_hdr_from_memory(bytes.data(), length)) throw Error(file.string(), "not a Radiance HDR (RGBE) file");
     int width = 0, height = 0, channels = 0;
@@ -192,28 +193,27 @@ std::shared_ptr<const EnvironmentMap> EnvironmentMap::load(const EnvironmentDesc
     for (size_t i = 0; i < pixels.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             const float v = pixels.pixels[i][c];
-            if (!std::isfinite(v) || v < 0.0f)
-                throw Error(desc.file.string(), "environment map texel (" + std::to_string(i % pixels.width) + ", " +
-                                                    std::to_string(i / pixels.width) + ") is negative or not finite");
+            const std::string texel = "environment map texel (" + std::to_string(i % pixels.width) + ", " +
+                                      std::to_string(i / pixels.width) + ")";
+            if (!std::isfinite(v) || v < 0.0f) throw Error(desc.file.string(), texel + " is negative or not finite");
+            // The images and the GPU's lights hold single-precision floats (docs/robustness.md).
+            if (double(v) * desc.scale > kMaxMagnitude)
+                throw Error(desc.file.string(), texel + " times the scale exceeds 1e30");
         }
     return std::make_shared<const EnvironmentMap>(std::move(pixels), desc.scale, desc.rotation);
 }
 
-int EnvironmentMap::texelOf(const Vec3& toward, int* row) const {
+int EnvironmentMap::texelOf(const Vec3& toward) const {
     const Vec3 d = glm::transpose(rotation_) * toward;
     const double theta = std::acos(std::clamp(d.y, -1.0, 1.0));
     double phi = std::atan2(-d.z, d.x);
     if (phi < 0.0) phi += 2.0 * kPi;
     const int x = std::clamp(int(phi / (2.0 * kPi) * width_), 0, width_ - 1);
     const int y = std::clamp(int(theta / kPi * height_), 0, height_ - 1);
-    *row = y;
     return y * width_ + x;
 }
 
-Rgb EnvironmentMap::radiance(const Vec3& toward) const {
-    int row;
-    return texels_[size_t(texelOf(toward, &row))];
-}
+Rgb EnvironmentMap::radiance(const Vec3& toward) const { return texels_[size_t(texelOf(toward))]; }
 
 EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2) const {
     double dv, du;
@@ -231,8 +231,7 @@ EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2) const {
 }
 
 double EnvironmentMap::pdf(const Vec3& toward) const {
-    int y;
-    const int i = texelOf(toward, &y);
+    const int i = texelOf(toward);
     const Vec3 d = glm::transpose(rotation_) * toward;
     const double sinTheta = std::sqrt(std::max(0.0, 1.0 - d.y * d.y));
     if (!(sinTheta > 0.0)) return 0.0;

@@ -56,7 +56,7 @@ public:
     int height() const { return height_; }
 
 private:
-    int texelOf(const Vec3& toward, int* row) const;
+    int texelOf(const Vec3& toward) const;  // the texel's index
 
     int width_ = 0, height_ = 0;
     std::vector<Rgb> texels_;               // scaled radiance, row-major, row 0 the top

@@ -16,9 +16,9 @@ namespace lucent {
 
 // The grids take an environment as at most this many directional lights (ss's
 // --env-lights, up to it), since the light scattered twice or more is smooth:
-// under a sky with a sun, 16 serve lbl and mdom as well as 64 on the sphere and
-// the bunny, and 4 are 15% off on the sphere (docs/results/environment.md,
-// lucent-bench-environment).
+// under a sky with a sun, lbl and mdom with 16 stay within 2 points of 64, at
+// 54-65% of the solve's time, and with 4 are 13-14% off on the sphere
+// (docs/results/environment.md, lucent-bench-environment).
 inline constexpr int kGridEnvironmentLights = 16;
 
 class GridMethod : public Method {

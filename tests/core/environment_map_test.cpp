@@ -207,6 +207,11 @@ TEST(EnvironmentMap, HostileMapFilesGetOneErrorNamingTheFile) {
     EXPECT_CONTAINS(errorOf([&] { EnvironmentMap::load(fileDesc(nan)); }), "is negative or not finite");
     writeExr(nan, 4, 2, -1.0f);
     EXPECT_CONTAINS(errorOf([&] { EnvironmentMap::load(fileDesc(nan)); }), "is negative or not finite");
+    // Finite, but past the single-precision images once scaled.
+    writeExr(nan, 4, 2, 60000.0f);
+    EnvironmentDesc scaled = fileDesc(nan);
+    scaled.scale = 1e27;
+    EXPECT_CONTAINS(errorOf([&] { EnvironmentMap::load(scaled); }), "texel (0, 0) times the scale exceeds 1e30");
     EXPECT_CONTAINS(errorOf([&] { EnvironmentMap::load(fileDesc(dir.write("bad.exr", "garbage bytes"))); }),
                     "bad.exr: cannot read OpenEXR environment map");
 }
