@@ -22,6 +22,7 @@
 
 #include "bench/path_truth.h"
 #include "bench/results_record.h"
+#include "bench/ss_frame.h"
 #include "core/atomic_file.h"
 #include "core/environment_map.h"
 #include "core/error.h"
@@ -78,22 +79,6 @@ double medianRenderSeconds(const std::string& method, const LoadedScene& loaded,
         if (r == 0 && image) *image = std::move(rendered);
     }
     return median(times);
-}
-
-// ss's frame drawn again with its light cached, in ms (the median of frames).
-double ssFrameMs(const LoadedScene& loaded, int frameSize, int frames) {
-    const auto context = OffscreenContext::create(GlBackend::Auto);
-    OffscreenFrame frame(frameSize, frameSize);
-    ScatteringRenderer renderer;
-    renderer.addObject(translucentObjectFor(loaded.objects[0], loaded.samples[0]));
-    renderer.setLights(loaded.lightsWithEnvironment(SsOptions().environmentLights));
-    Camera camera = loaded.desc.camera;
-    camera.width = camera.height = frameSize;
-    const ViewSetup view = viewSetupFor(camera, loaded.bounds());
-    DrawOptions options;
-    options.surface = false;
-    return 1e3 * medianFrameSeconds(
-                     3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
 }
 
 struct Row {

@@ -32,6 +32,7 @@
 
 #include "bench/path_truth.h"
 #include "bench/results_record.h"
+#include "bench/ss_frame.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_compare.h"
@@ -168,24 +169,6 @@ double medianRenderSeconds(const LoadedScene& loaded, const MethodSettings& sett
     return median(times);
 }
 
-// ss's frame drawn again with everything cached (the light through the
-// boundary and the view's stretches traced by the warm-up), in ms: the median
-// of `frames` at frameSize x frameSize.
-double ssFrameMs(const LoadedScene& loaded, const SampleSet& samples, int frameSize, int frames) {
-    const auto context = OffscreenContext::create(GlBackend::Auto);
-    OffscreenFrame frame(frameSize, frameSize);
-    ScatteringRenderer renderer;
-    renderer.addObject(translucentObjectFor(loaded.objects[0], samples));
-    renderer.setLights(loaded.desc.lights);
-    Camera camera = loaded.desc.camera;
-    camera.width = camera.height = frameSize;
-    const ViewSetup view = viewSetupFor(camera, loaded.bounds());
-    DrawOptions options;
-    options.surface = false;
-    return 1e3 * medianFrameSeconds(
-                     3, frames, [&] { frame.bindAndClear(); }, [&] { renderer.draw(view, options); });
-}
-
 void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats, int frameSize) {
     const int frames = 20;
     out.print(
@@ -209,7 +192,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         MethodSettings settings;
         settings.surface = false;
         const double matchedSeconds = medianRenderSeconds(indexMatched, settings, repeats);
-        const double matchedFrameMs = ssFrameMs(indexMatched, samples, frameSize, frames);
+        const double matchedFrameMs = ssFrameMs(indexMatched, frameSize, frames);
         for (double ior : iors) {
             SceneDesc scene = refractionScene(model, ior);
             scene.camera = matched.camera;
@@ -222,7 +205,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const double referenceSeconds = stopwatch.seconds();
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
             const double ssSeconds = medianRenderSeconds(loaded, settings, repeats);
-            const double frameMs = ssFrameMs(loaded, samples, frameSize, frames);
+            const double frameMs = ssFrameMs(loaded, frameSize, frames);
             const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
