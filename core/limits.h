@@ -23,5 +23,8 @@ inline constexpr double kMaxMagnitude = 1e30;
 // Lights per scene: the blocker shadow maps take six layers per light, and
 // OpenGL guarantees 2048 layers per texture array.
 inline constexpr size_t kMaxLights = 256;
+// Directional lights an environment light may become in ss, lbl and mdom
+// (--env-lights): a scene with an environment keeps room for them among kMaxLights.
+inline constexpr size_t kMaxEnvironmentLights = 128;
 
 }  // namespace lucent

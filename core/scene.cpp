@@ -300,6 +300,11 @@ SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& f
             scene.lights.push_back(parseLight(light));
         }
     }
+    if (scene.environment && scene.lights.size() > kMaxLights - kMaxEnvironmentLights)
+        lights.fail("holds " + std::to_string(scene.lights.size()) + " lights beside an environment; at most " +
+                    std::to_string(kMaxLights - kMaxEnvironmentLights) +
+                    " are supported with one, which is drawn as up to " + std::to_string(kMaxEnvironmentLights) +
+                    " directional lights (docs/robustness.md)");
     Node objects = root.child("objects");
     if (objects.arraySize() == 0) objects.fail("must hold at least one object");
     for (size_t i = 0; i < objects.arraySize(); ++i)

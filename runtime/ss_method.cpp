@@ -5,6 +5,7 @@
 
 #include "core/sphere_light.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/sample_set.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/internal/refracted_view.h"
@@ -81,7 +82,7 @@ std::vector<OptionSpec> SsOptions::specs() {
                            "boundary), or read from its SH attenuation (sh: the thesis; blurs narrow shadows, no "
                            "shadows between objects, boundaries index-matched)"),
         OptionSpec::choice("backend", "auto", {"auto", "egl", "osmesa"}, "the OpenGL backend (auto: EGL, then OSMesa)"),
-        OptionSpec::integer("env-lights", SsOptions().environmentLights, 1, 128,
+        OptionSpec::integer("env-lights", SsOptions().environmentLights, 1, int(kMaxEnvironmentLights),
                             "directional lights an environment light is drawn as, drawn from its map by "
                             "importance; time grows with them")};
 }

@@ -252,6 +252,11 @@ TEST(EnvironmentMap, TheSceneTakesOneEnvironmentWithItsKeys) {
                             "key.json");
                     }),
                     "/lights/0/sun: unknown key");
+    // Room among the 256 lights for the directional lights it becomes.
+    std::string many = R"("lights": [{"type": "environment", "file": "a.hdr"})";
+    for (int i = 0; i < 129; ++i) many += R"(, {"type": "point", "position": [1, 2, 3], "intensity": 1})";
+    EXPECT_CONTAINS(errorOf([&] { parseSceneText(head + many + "]," + tail, "many.json"); }),
+                    "many.json: /lights: holds 129 lights beside an environment; at most 128");
 }
 
 }  // namespace
