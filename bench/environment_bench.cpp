@@ -14,7 +14,8 @@
 // again with the light cached (the viewer's frame), all with default options.
 // Then, under the sky, the counts of directional lights the environment becomes:
 // ss's --env-lights against the reference, and the lights lbl's and mdom's grids
-// are solved for (kGridEnvironmentLights) against the path tracer.
+// are solved for (kGridEnvironmentLights) against the path tracer. Last, ss
+// --light sh: the environment projected onto SH against the point light.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -156,6 +157,7 @@ void gridCountRows(ResultsRecord& out, GridSolvers& solvers, const std::string& 
 struct SkyScene {
     std::string model;
     LoadedScene scene;
+    Light point;  // the scene's point light, which the sky's sun stands in for
 };
 
 void environmentTable(ResultsRecord& out, const std::vector<std::string>& models, int size, int spp, int repeats,
@@ -191,7 +193,7 @@ void environmentTable(ResultsRecord& out, const std::vector<std::string>& models
                       model.c_str(), k == 0 ? "point" : "sky with a sun", r.noise, r.ssSingle, r.ss, r.lbl, r.mdom,
                       r.ssSeconds, r.lblSeconds, r.mdomSeconds, r.referenceSeconds, r.pathSeconds, r.frameMs);
         }
-        counts.push_back({model, std::move(lit)});
+        counts.push_back({model, std::move(lit), light});
         const Row &p = rows[0], &e = rows[1];
         out.print("| %s | environment / point | | | | | | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx |\n",
                   model.c_str(), e.ssSeconds / p.ssSeconds, e.lblSeconds / p.lblSeconds, e.mdomSeconds / p.mdomSeconds,
@@ -222,6 +224,60 @@ void countsTable(ResultsRecord& out, std::vector<SkyScene>& skies, int spp, int 
     }
 }
 
+// One row of the --light sh table: ss's error against the reference, its whole render and its frame.
+struct ShRow {
+    double error = 0, seconds = 0, frameMs = 0;
+};
+
+ShRow shRow(const LoadedScene& scene, int repeats, int frameSize) {
+    MethodSettings settings;
+    settings.surface = false;
+    const MethodEntry& ss = findMethod("ss");
+    const MethodOptions options = MethodOptions(ss.options).set("light", "sh");
+    const Image reference = renderWith(findMethod("reference"), scene, settings);
+    std::vector<double> times;
+    Image image;
+    for (int r = 0; r < repeats; ++r) {
+        Stopwatch stopwatch;
+        image = renderWith(ss, *ss.create(options), scene, settings);
+        times.push_back(stopwatch.seconds());
+    }
+    SsOptions sh;
+    sh.tracedLight = false;
+    return {luminanceRelativeRmse(image, reference), median(times), ssFrameMs(scene, frameSize, 20, sh)};
+}
+
+// ss --light sh: the sky projected onto SH per sample (ScatteringRenderer::setEnvironment)
+// against the point light read from the SH, isotropic (the light cached) and at g = 0.5 (8 bands, each frame).
+void shTable(ResultsRecord& out, std::vector<SkyScene>& skies, int repeats, int frameSize) {
+    out.print(
+        "\nss --light sh: the sky with a sun projected onto SH per sample (1 band at g = 0, 8 at g = 0.5) against "
+        "the point light, each read from the samples' SH: error against --method reference, whole renders in s "
+        "(the median of %d), the frame at %dx%d in ms (the median of 20; the light cached at g = 0 only)\n\n",
+        repeats, frameSize, frameSize);
+    out.tableHeader({"model", "g", "light", "error", "render (s)", "frame (ms)"},
+                    {false, true, false, true, true, true});
+    for (SkyScene& sky : skies) {
+        for (double g : {0.0, 0.5}) {
+            SceneDesc desc = sky.scene.desc;
+            desc.objects[0].medium.g = g;
+            LoadedScene lit = loadScene(desc, false);
+            attachSamples(lit, {sky.scene.samples[0]});
+            lit.environment = sky.scene.environment;
+            ShRow rows[2];
+            rows[1] = shRow(lit, repeats, frameSize);
+            lit.environment.reset();
+            lit.desc.lights = {sky.point};
+            rows[0] = shRow(lit, repeats, frameSize);
+            for (int k = 0; k < 2; ++k)
+                out.print("| %s | %.1f | %s | %.4f | %.2f | %.1f |\n", sky.model.c_str(), g,
+                          k == 0 ? "point" : "sky with a sun", rows[k].error, rows[k].seconds, rows[k].frameMs);
+            out.print("| %s | %.1f | environment / point | | %.2fx | %.2fx |\n", sky.model.c_str(), g,
+                      rows[1].seconds / rows[0].seconds, rows[1].frameMs / rows[0].frameMs);
+        }
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -242,6 +298,7 @@ int main(int argc, char** argv) {
         std::vector<SkyScene> skies;
         environmentTable(out, models, size, spp, repeats, frameSize, skies);
         countsTable(out, skies, spp, repeats);
+        shTable(out, skies, repeats, frameSize);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-environment: error: %s\n", e.what());

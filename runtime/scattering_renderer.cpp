@@ -28,6 +28,7 @@ TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleS
 struct ScatteringRenderer::Impl {
     std::vector<GpuObject> objects;
     GpuLights lights;
+    std::vector<Light> environment;  // setEnvironment's, after lights.lights in the block
     FrameTargets targets;
     FrameTargets scatterTargets;  // at the scattering's reduced resolution, when it is reduced
     // In drawing order: the reflected surface, then single scattering, then multiple.
@@ -45,7 +46,18 @@ struct ScatteringRenderer::Impl {
         if (lights.buffer) glDeleteBuffers(1, &lights.buffer);
     }
     void retraceAll();
+    void uploadLights();
 };
+
+int environmentShBands(double g) {
+    static_assert(kEnvironmentShMaxBands == gpu::kEnvironmentShMaxBands, "sample_light.glsl's arrays hold them");
+    int bands = 1;
+    for (double weight = std::abs(g); bands < kEnvironmentShMaxBands && weight > kEnvironmentShBandWeight; ++bands)
+        weight *= std::abs(g);
+    return bands;
+}
+
+bool environmentShHolds(double g) { return std::pow(std::abs(g), kEnvironmentShMaxBands) <= kEnvironmentShBandWeight; }
 
 int scatterScaleFor(double radiusPixels) {
     int scale = 1;
@@ -118,6 +130,7 @@ void ScatteringRenderer::Impl::retraceAll() {
     for (GpuObject& o : objects) {
         o.samples->tracedValid = false;
         o.samples->receivedValid = false;
+        o.samples->environmentValid = false;
     }
 }
 
@@ -144,7 +157,8 @@ void ScatteringRenderer::setAlbedoAndG(size_t index, const Rgb& albedo, double g
     GpuObject& o = impl_->objects[index];
     o.albedo = albedo;
     o.g = g;
-    o.samples->receivedValid = false;  // cached with the phase function of its g
+    o.samples->receivedValid = false;     // cached with the phase function of its g
+    o.samples->environmentValid = false;  // projected onto the bands its g needs
 }
 
 void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement) {
@@ -170,29 +184,51 @@ size_t ScatteringRenderer::sampleCount() const {
 }
 
 void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
-    if (lights.size() > kMaxLights)
-        throw Error("ScatteringRenderer::setLights: " + std::to_string(lights.size()) + " lights; at most " +
-                    std::to_string(kMaxLights));
-    static_assert(gpu::kMaxLights == kMaxLights, "lights.glsl's block holds the scene's limit");
-    std::vector<gpu::Light> packed;
-    packed.reserve(kMaxLights);
-    for (const Light& l : lights) {
-        const bool point = l.type == Light::Type::Point;
-        packed.push_back({glm::vec4(glm::vec3(point ? l.position : l.direction), point ? 1.0f : 0.0f),
-                          glm::vec4(glm::vec3(l.power), float(l.radius)), glm::vec4(spotCoefficients(l))});
-    }
-    GpuLights& g = impl_->lights;
-    if (g.buffer) glDeleteBuffers(1, &g.buffer);
-    glCreateBuffers(1, &g.buffer);
-    packed.resize(kMaxLights);  // the uniform block's whole size, as lights.glsl declares it
-    glNamedBufferStorage(g.buffer, GLsizeiptr(packed.size() * sizeof(gpu::Light)), packed.data(), 0);
-    g.count = int(lights.size());
-    g.lights = lights;
+    if (lights.size() + impl_->environment.size() > kMaxLights)
+        throw Error("ScatteringRenderer::setLights: " + std::to_string(lights.size()) + " lights and " +
+                    std::to_string(impl_->environment.size()) + " of the environment; at most " +
+                    std::to_string(kMaxLights) + " in all");
+    impl_->lights.lights = lights;
+    impl_->uploadLights();
     for (GpuObject& o : impl_->objects) {
         o.samples->receivedValid = false;
         o.samples->tracedValid = false;
         o.shadowsValid = false;
     }
+}
+
+void ScatteringRenderer::setEnvironment(const std::vector<Light>& directions) {
+    if (impl_->lights.lights.size() + directions.size() > kMaxLights)
+        throw Error("ScatteringRenderer::setEnvironment: " + std::to_string(directions.size()) + " directions and " +
+                    std::to_string(impl_->lights.lights.size()) + " lights; at most " + std::to_string(kMaxLights) +
+                    " in all");
+    for (const Light& l : directions)
+        if (l.type != Light::Type::Directional)
+            throw Error("ScatteringRenderer::setEnvironment: the environment's lights must be directional");
+    impl_->environment = directions;
+    impl_->uploadLights();
+    for (GpuObject& o : impl_->objects) {
+        o.samples->environmentValid = false;
+        o.samples->receivedValid = false;
+    }
+}
+
+void ScatteringRenderer::Impl::uploadLights() {
+    static_assert(gpu::kMaxLights == kMaxLights, "lights.glsl's block holds the scene's limit");
+    std::vector<gpu::Light> packed;
+    packed.reserve(kMaxLights);
+    for (const std::vector<Light>* list : {&lights.lights, &environment})
+        for (const Light& l : *list) {
+            const bool point = l.type == Light::Type::Point;
+            packed.push_back({glm::vec4(glm::vec3(point ? l.position : l.direction), point ? 1.0f : 0.0f),
+                              glm::vec4(glm::vec3(l.power), float(l.radius)), glm::vec4(spotCoefficients(l))});
+        }
+    if (lights.buffer) glDeleteBuffers(1, &lights.buffer);
+    glCreateBuffers(1, &lights.buffer);
+    packed.resize(kMaxLights);  // the uniform block's whole size, as lights.glsl declares it
+    glNamedBufferStorage(lights.buffer, GLsizeiptr(packed.size() * sizeof(gpu::Light)), packed.data(), 0);
+    lights.count = int(lights.lights.size());
+    lights.environmentCount = int(environment.size());
 }
 
 void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {

@@ -83,6 +83,20 @@ struct DrawOptions {
 inline constexpr double kReducedPixelPerRadius = 0.75;
 int scatterScaleFor(double radiusPixels);
 
+// The SH bands in which the samples hold the environment's light
+// (ScatteringRenderer::setEnvironment) in a medium of mean cosine g: the fewest
+// whose first band left out weighs |g|^bands <= kEnvironmentShBandWeight in the
+// phase function (1 when g = 0), at most kEnvironmentShMaxBands.
+inline constexpr double kEnvironmentShBandWeight = 0.005;
+inline constexpr int kEnvironmentShMaxBands = 8;
+int environmentShBands(double g);
+// Whether those bands reach that weight: |g| up to 0.515. Past it they lose
+// the phase function's forward peak (under a sky with a sun, 8 bands at g = 0.6
+// were 10% and 13% off the reference on the sphere and the bunny, 4% and 5% at
+// g = 0.5, docs/accuracy.md), and --method ss gives the environment's
+// directions to setLights instead.
+bool environmentShHolds(double g);
+
 class ScatteringRenderer {
 public:
     // On the current context, once loadGl has loaded Lucent's functions from it
@@ -111,7 +125,19 @@ public:
     // A multiple-scattering grid was solved for where the objects stood: it does
     // not follow (clear it, solve again).
     void setPlacement(size_t index, const Similarity& placement);
+    // Every light, together with the environment's, at most kMaxLights (core/limits.h).
     void setLights(const std::vector<Light>& lights);
+    // An environment light as directional lights drawn from its map by
+    // importance (EnvironmentMap::asDirectionalLights; none: no environment).
+    // The surfaces reflect them as lights. The samples receive them through SH
+    // (thesis 3.3, eq. 3.4): each sample's attenuation times their light is
+    // projected onto environmentShBands(g) bands once per change of the
+    // environment, the placements, the medium scale or g, then read each frame
+    // at about one light's cost. Exact up to the directions' sampling when g = 0;
+    // the phase function's later bands are lost, blockers do not shadow it and
+    // boundaries pass it index-matched (docs/accuracy.md).
+    // Give the directions to setLights instead to have them traced (DrawOptions::tracedLight).
+    void setEnvironment(const std::vector<Light>& directions);
     // Light scattered twice or more, as a volumetric method solved it for the
     // current lights (hybrid/: --method lbl); drawn after single scattering.
     // Copied to the GPU at once. DrawOptions::extinctionScale does not apply to it.

@@ -56,4 +56,13 @@ private:
 Image renderSingleScattering(const LoadedScene& scene, const MethodSettings& settings, const SsOptions& options,
                              const std::vector<ScatteringGrid>& grids, std::string& backend);
 
+class ScatteringRenderer;
+
+// Gives renderer the scene's lights and environment as --method ss draws them.
+// The environment's options.environmentLights directions are lights like any
+// other when the light is traced; read from the SH (--light sh) they are
+// projected once onto SH (ScatteringRenderer::setEnvironment), in media whose g
+// the bands hold (environmentShHolds), and are lights again otherwise.
+void setSsLights(ScatteringRenderer& renderer, const LoadedScene& scene, const SsOptions& options);
+
 }  // namespace lucent

@@ -17,11 +17,12 @@ using glm::vec4;
 #endif
 
 // Shader storage buffer bindings, and the lights' uniform block (lights.glsl).
-LUCENT_GPU_CONSTANT(kBindingSamples, 0)       // Sample[]: one object's samples
-LUCENT_GPU_CONSTANT(kBindingLights, 1)        // uniform block Light[kMaxLights]: the scene's lights
-LUCENT_GPU_CONSTANT(kBindingReceived, 2)      // Received[]: the cached light each sample receives
-LUCENT_GPU_CONSTANT(kBindingShadowViews, 3)   // mat4[]: view-projection of each blocker shadow layer
-LUCENT_GPU_CONSTANT(kBindingTracedDepths, 4)  // vec4[sample][light]: traced optical depths (traced_light.h)
+LUCENT_GPU_CONSTANT(kBindingSamples, 0)        // Sample[]: one object's samples
+LUCENT_GPU_CONSTANT(kBindingLights, 1)         // uniform block Light[kMaxLights]: the scene's lights
+LUCENT_GPU_CONSTANT(kBindingReceived, 2)       // Received[]: the cached light each sample receives
+LUCENT_GPU_CONSTANT(kBindingShadowViews, 3)    // mat4[]: view-projection of each blocker shadow layer
+LUCENT_GPU_CONSTANT(kBindingTracedDepths, 4)   // vec4[sample][light]: traced optical depths (traced_light.h)
+LUCENT_GPU_CONSTANT(kBindingEnvironmentSh, 5)  // vec4[sample][bands^2 + 1]: the environment's SH (environment_sh.comp)
 
 // Texture units of the sample programs.
 LUCENT_GPU_CONSTANT(kUnitRaySegments, 0)      // per pixel [t0, t1] inside the objects
@@ -41,6 +42,10 @@ LUCENT_GPU_CONSTANT(kRefractedStretches, 2)
 // Point-sprite proxies (scatter.geom, POINT_PROXIES) cover a box in up to this
 // many points along each screen axis.
 LUCENT_GPU_CONSTANT(kPointProxyTiles, 4)
+// At most this many SH bands hold each sample's environment light times its
+// attenuation (environment_sh.comp); per sample, one record per coefficient
+// (rgb), then one for the direction the light falls off fastest in (xyz).
+LUCENT_GPU_CONSTANT(kEnvironmentShMaxBands, 8)
 // The lights' uniform block holds this many: core/limits.h's kMaxLights (12 KiB).
 LUCENT_GPU_CONSTANT(kMaxLights, 256)
 

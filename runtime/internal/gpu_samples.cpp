@@ -63,6 +63,7 @@ GpuSamples::~GpuSamples() {
     if (coefficientTexture_) glDeleteTextures(1, &coefficientTexture_);
     glDeleteBuffers(3, buffers_);
     if (tracedBuffer_) glDeleteBuffers(1, &tracedBuffer_);
+    if (environmentBuffer_) glDeleteBuffers(1, &environmentBuffer_);
     glDeleteVertexArrays(1, &vao_);
 }
 
@@ -72,6 +73,28 @@ void GpuSamples::bind(bool coefficients) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingReceived, buffers_[2]);
     glBindTextureUnit(gpu::kUnitCoefficients, coefficients ? coefficientTexture_ : 0);
     if (tracedBuffer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingTracedDepths, tracedBuffer_);
+    if (environmentBuffer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvironmentSh, environmentBuffer_);
+}
+
+// bands^2 coefficients and one gradient per sample (sample_light.glsl, environmentRecords).
+static uint64_t environmentRecords(int bands) { return uint64_t(bands) * uint64_t(bands) + 1u; }
+
+bool GpuSamples::environmentFits(int bands) const {
+    return uint64_t(count_) * environmentRecords(bands) * 16u <= maxBlockBytes_;
+}
+
+void GpuSamples::computeEnvironment(int bands) {
+    if (bands != environmentBands_) {
+        if (environmentBuffer_) glDeleteBuffers(1, &environmentBuffer_);
+        glCreateBuffers(1, &environmentBuffer_);
+        glNamedBufferStorage(environmentBuffer_,
+                             GLsizeiptr(std::max<size_t>(count_, 1) * environmentRecords(bands) * sizeof(glm::vec4)),
+                             nullptr, 0);
+        environmentBands_ = bands;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kBindingEnvironmentSh, environmentBuffer_);
+    if (count_ > 0) glDispatchCompute(GLuint((count_ + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSamples::setTracedDepths(const std::vector<glm::vec4>& depths) {

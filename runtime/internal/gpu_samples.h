@@ -39,6 +39,14 @@ public:
     bool receivedValid = false;
     float receivedScale = 0.0f;
     bool receivedTraced = false;  // whether it was computed from the traced depths
+    // The environment's light projected onto SH per sample (environment_sh.comp),
+    // bound at kBindingEnvironmentSh once computed; the bound compute program fills it.
+    void computeEnvironment(int bands);
+    bool environmentValid = false;
+    float environmentScale = 0.0f;  // the medium scale it was projected at
+    int environmentBands() const { return environmentBands_; }
+    // Whether its records at this many bands fit one shader storage block (as tracedDepthsFit).
+    bool environmentFits(int bands) const;
     // The traced optical depths of runtime/internal/traced_light.h, bound at
     // kBindingTracedDepths; tracedValid while they hold the current lights and placements.
     void setTracedDepths(const std::vector<glm::vec4>& depths);
@@ -60,7 +68,7 @@ public:
 private:
     void uploadCoefficients();
     const SampleSet* source_;
-    GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0, tracedBuffer_ = 0;
+    GLuint vao_ = 0, buffers_[3] = {0, 0, 0}, coefficientTexture_ = 0, tracedBuffer_ = 0, environmentBuffer_ = 0;
     size_t count_ = 0;
     uint64_t maxBlockBytes_ = 0;
     int shOrder_ = 0, channels_ = 1;
@@ -68,6 +76,7 @@ private:
     bool homogeneous_ = true;
     bool fromFront_ = false;
     SlabTable slabs_;
+    int environmentBands_ = 0;
 };
 
 }  // namespace lucent

@@ -46,11 +46,16 @@ struct GpuObject {
     RefractedView refractedView;  // the view through its boundary, when it refracts (SamplePass::refracted)
 };
 
-// The scene's lights in the kBindingLights buffer.
+// The scene's lights in the kBindingLights buffer: first the lights
+// (ScatteringRenderer::setLights), which every pass loops over, then the
+// environment's directional lights (setEnvironment), which the surfaces and the
+// closed forms loop over and the samples read projected onto SH (environment_sh.comp).
 struct GpuLights {
     GLuint buffer = 0;
     int count = 0;
+    int environmentCount = 0;
     std::vector<Light> lights;
+    int withEnvironment() const { return count + environmentCount; }
 };
 
 // What every pass of one frame sees.

@@ -164,6 +164,38 @@ vec3 attenuation(int sampleIndex, vec3 worldDirection) {
     return k == 1.0 ? psi : pow(psi, vec3(k));
 }
 
+// The environment's SH bands for this object (SamplePass::environmentBands), at most kEnvironmentShMaxBands.
+uniform int environmentBands;
+const int kEnvironmentShMax = kEnvironmentShMaxBands * kEnvironmentShMaxBands;
+int environmentRecords() { return environmentBands * environmentBands + 1; }
+
+// The real SH of the first environmentBands bands at the unit vector d, in
+// attenuation()'s convention (core/spherical_harmonics.cpp), at l * l + l + m.
+void environmentBasis(vec3 d, out float y[kEnvironmentShMax]) {
+    float cm = 1.0, sm = 0.0, qmm = 1.0;
+    for (int m = 0; m < environmentBands; ++m) {
+        float q2 = 0.0, q1 = qmm;
+        for (int l = m; l < environmentBands; ++l) {
+            float q;
+            if (l == m) q = qmm;
+            else if (l == m + 1) q = d.z * (2.0 * m + 1.0) * qmm;
+            else q = ((2.0 * l - 1.0) * d.z * q1 - (l + m - 1.0) * q2) / float(l - m);
+            if (l > m) { q2 = q1; q1 = q; }
+            float kq = shNormalisation[l * l + l + m] * q;
+            if (m == 0) {
+                y[l * l + l] = kq;
+            } else {
+                y[l * l + l + m] = kq * cm;
+                y[l * l + l - m] = kq * sm;
+            }
+        }
+        float c = cm * d.x - sm * d.y, s = cm * d.y + sm * d.x;
+        cm = c;
+        sm = s;
+        qmm *= -(2.0 * m + 1.0);
+    }
+}
+
 // Minus the gradient of the path length to the boundary along w, the direction
 // in which the optical depth towards that light falls fastest, per unit sigma_t.
 // Out of the boundary ball, through the point e where w leaves it, it is
@@ -192,6 +224,32 @@ vec3 pathGradient(int i, vec3 w, float psi) {
 // by their share: the gradient of the log of a sum is that average). Moving
 // towards light j by d gains exp(sigma_t d) of transmittance and (1 + 2 d / r_j)
 // of irradiance, so the gradient is sigma_t towardLights + falloff.
+
+// The environment's light (ScatteringRenderer::setEnvironment) as each sample
+// receives it, projected once onto SH by environment_sh.comp: S_lm, the SH of
+// E(w) psi_i(w) over the directions w the light comes from, then the direction
+// the light falls off fastest in (pathGradient, averaged by share).
+// ENVIRONMENT_SH is a program variant (SamplePass), as TRACED_LIGHT is.
+#ifdef ENVIRONMENT_SH
+layout(std430, binding = kBindingEnvironmentSh) readonly buffer EnvironmentSh { vec4 environmentSh_[]; };
+
+// The scattered light towards toCamera: the phase function's integral against
+// S (thesis eq. 3.4). Funk-Hecke: Henyey-Greenstein's band l is g^l, so the
+// integral over w of p(-w . c) S(w) is sum_lm g^l S_lm Y_lm(-c). Exact when
+// g = 0; the bands past environmentBands are lost (docs/accuracy.md).
+vec3 environmentLight(int i, vec3 toCamera) {
+    float y[kEnvironmentShMax];
+    environmentBasis(-toCamera, y);
+    int base = i * environmentRecords();
+    vec3 light = vec3(0.0);
+    float band = 1.0;  // g^l
+    for (int l = 0; l < environmentBands; ++l) {
+        for (int k = l * l; k < (l + 1) * (l + 1); ++k) light += band * y[k] * environmentSh_[base + k].rgb;
+        band *= g;
+    }
+    return max(light, vec3(0.0));
+}
+#endif
 
 // The light sample i receives, with the phase function towards toCamera (any
 // vector when g = 0, where p is the constant 1 / (4 pi)).
@@ -239,6 +297,15 @@ Received receivedLight(int i, vec3 toCamera) {
         falloff += share * 2.0 * inverseDistance * toLight;
         total += share;
     }
+#ifdef ENVIRONMENT_SH
+    {
+        vec3 light = environmentLight(i, toCamera);
+        float share = light.r + light.g + light.b;
+        received += light;
+        toward += share * environmentSh_[(i + 1) * environmentRecords() - 1].xyz;
+        total += share;
+    }
+#endif
     float norm = total > 0.0 ? 1.0 / total : 0.0;
     return Received(vec4(received, 0.0), vec4(toward * norm, 0.0), vec4(falloff * norm, 0.0));
 }

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <utility>
 
+#include "core/error.h"
 #include "core/math.h"
 #include "runtime/internal/frame_targets.h"
 #include "runtime/internal/gpu_layout.h"
@@ -37,9 +38,12 @@ SamplePass::SamplePass(double cutoff)
     : cutoffSigmas_(std::sqrt(2.0 * std::log(1.0 / cutoff))),
       keptMassInverse_(1.0 / std::pow(std::erf(cutoffSigmas_ / std::sqrt(2.0)), 2)) {}
 
-const GlProgram& SamplePass::receivedProgram(bool tracedLight, bool refracted) const {
-    if (refracted) return receivedPrograms_.get({"TRACED_LIGHT", "REFRACTED_LIGHT"});
-    return tracedLight ? receivedPrograms_.get({"TRACED_LIGHT"}) : receivedPrograms_.get();
+const GlProgram& SamplePass::receivedProgram(bool tracedLight, bool refracted, bool environment) const {
+    std::vector<std::string> defines;
+    if (tracedLight || refracted) defines.push_back("TRACED_LIGHT");
+    if (refracted) defines.push_back("REFRACTED_LIGHT");
+    if (environment) defines.push_back("ENVIRONMENT_SH");
+    return receivedPrograms_.get(defines);
 }
 
 void SamplePass::setSampleUnits(const GlProgram& p) {
@@ -59,7 +63,8 @@ const GlProgram& SamplePass::scatterProgram(const ScatterVariant& variant) const
                                                      {variant.tracedLight, "TRACED_LIGHT"},
                                                      {variant.pointProxies, "POINT_PROXIES"},
                                                      {variant.refracted, "REFRACTED_LIGHT"},
-                                                     {variant.refracted, "REFRACTED_VIEW"}};
+                                                     {variant.refracted, "REFRACTED_VIEW"},
+                                                     {variant.environmentSh, "ENVIRONMENT_SH"}};
     std::vector<std::string> defines;
     for (const auto& [wanted, define] : features)
         if (wanted) defines.push_back(define);
@@ -157,7 +162,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     const bool tracedLight = traced(o, frame);
     if (o.samples->receivedValid && o.samples->receivedScale == scale && o.samples->receivedTraced == tracedLight)
         return;
-    const GlProgram& c = receivedProgram(tracedLight, refracted(o, frame));
+    const GlProgram& c = receivedProgram(tracedLight, refracted(o, frame), environmentSh(o, frame));
     glUseProgram(c.id());
     glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
     glUniform1i(c.uniform("channels"), o.samples->channels());
@@ -169,6 +174,37 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     o.samples->receivedValid = true;
     o.samples->receivedScale = scale;
     o.samples->receivedTraced = tracedLight;
+}
+
+bool SamplePass::environmentSh(const GpuObject& o, const FrameContext& frame) {
+    return frame.lights.environmentCount > 0 && !o.opticallyThick && o.samples->size() > 0;
+}
+
+// Once per change of the environment, the placements or the medium scale.
+void SamplePass::updateEnvironment(GpuObject& o, const FrameContext& frame) const {
+    const float scale = frame.options.extinctionScale;
+    if (!environmentSh(o, frame) || (o.samples->environmentValid && o.samples->environmentScale == scale)) return;
+    const int bands = environmentShBands(o.g);
+    if (!o.samples->environmentFits(bands))
+        throw Error("the environment's light in " + std::to_string(bands) + " SH bands for " +
+                    std::to_string(o.samples->size()) +
+                    " samples needs more shader storage than this OpenGL allows: preprocess with fewer samples, "
+                    "or trace the light (--light traced)");
+    const GlProgram& c = environmentPrograms_.get();
+    setSamplePlacement(c, o.placement, o.samples->parameters().placementScale);
+    o.samples->bind(true);
+    glUseProgram(c.id());
+    glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
+    glUniform1i(c.uniform("channels"), o.samples->channels());
+    glUniform1f(c.uniform("extinctionScale"), scale);
+    glUniform1i(c.uniform("sampleCount"), GLint(o.samples->size()));
+    glUniform1i(c.uniform("environmentFirst"), frame.lights.count);
+    glUniform1i(c.uniform("environmentCount"), frame.lights.environmentCount);
+    glUniform1i(c.uniform("environmentBands"), bands);
+    o.samples->computeEnvironment(bands);
+    o.samples->environmentValid = true;
+    o.samples->environmentScale = scale;
+    o.samples->receivedValid = false;  // which holds it for isotropic media
 }
 
 void SamplePass::draw(FrameContext& frame) {
@@ -225,6 +261,7 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         const SlabTable& slabs = o.samples->slabs();
         const SampleParameters& parameters = o.samples->parameters();
         const bool lightVaries = parameters.scheme == SampleScheme::Lucent;
+        updateEnvironment(o, frame);
         ScatterVariant variant;
         variant.slabs = !slabs.empty();
         variant.regions = parameters.regionAxis != kNoRegionAxis;
@@ -236,8 +273,9 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         variant.tracedLight = traced(o, frame);
         variant.pointProxies = points;
         variant.refracted = refracted(o, frame);
+        variant.environmentSh = environmentSh(o, frame);
         const GlProgram& p = scatterProgram(variant);
-        const GlProgram& received = receivedProgram(variant.tracedLight, variant.refracted);
+        const GlProgram& received = receivedProgram(variant.tracedLight, variant.refracted, variant.environmentSh);
         if (variant.refracted) o.refractedView.bind(gpu::kUnitRefractedRays);
         setFrameUniforms(p, frame);
         const float preprocessedScale = o.samples->parameters().placementScale;
@@ -250,8 +288,10 @@ void SamplePass::drawProxies(FrameContext& frame, bool points, bool countUseful)
         // psi_i's SH: for the light, unless traced, and for the view, unless from the front face.
         o.samples->bind(!(variant.tracedLight && variant.viewFromFront));
         if (o.shadows) o.shadows->bind(gpu::kUnitShadowDistances);
-        for (const GlProgram* program : {&p, &received})
+        for (const GlProgram* program : {&p, &received}) {
             glProgramUniform1i(program->id(), program->uniform("blockerShadows"), o.shadows ? 1 : 0);
+            glProgramUniform1i(program->id(), program->uniform("environmentBands"), o.samples->environmentBands());
+        }
         if (variant.receivedCached) updateReceived(o, frame);
         glUseProgram(p.id());
         glUniform1i(p.uniform("shOrder"), o.samples->shOrder());

@@ -2,7 +2,8 @@
 // Pass 2 of thesis 3.4.2: every sample's Gaussian, expanded in a geometry shader
 // and integrated exactly along each pixel's ray segment (scatter.vert, .geom,
 // .frag), summed. Isotropic media reuse the light each sample receives while the
-// lights and the medium scale stay put (received.comp). The sum goes to the
+// lights and the medium scale stay put (received.comp); every medium reuses the
+// environment's light projected onto SH (environment_sh.comp). The sum goes to the
 // pass's own target first, whose depth is each pixel's reach inside the objects
 // (proxies beyond it are rejected before shading), and is then added to the
 // host's framebuffer (add_light.frag), or upsampled along the objects' depth
@@ -37,6 +38,9 @@ private:
     // is drawn as index-matched (SsMethod::limitations says so).
     static bool refracted(const GpuObject& o, const FrameContext& frame);
     void updateReceived(GpuObject& object, const FrameContext& frame) const;
+    // Whether object o's samples read the environment's SH this frame, and their projection (environment_sh.comp).
+    static bool environmentSh(const GpuObject& o, const FrameContext& frame);
+    void updateEnvironment(GpuObject& object, const FrameContext& frame) const;
     // Traces the light of the objects whose light is traced and no longer current,
     // and the view through refracting boundaries, on other threads.
     void startTraces(FrameContext& frame);
@@ -72,6 +76,7 @@ private:
         bool tracedLight = false;     // traced(): the light from the traced depths, not the SH (TRACED_LIGHT)
         bool pointProxies = false;    // pointProxiesCover(): a point sprite per proxy (POINT_PROXIES)
         bool refracted = false;       // refracted(): REFRACTED_LIGHT and REFRACTED_VIEW
+        bool environmentSh = false;   // environmentSh(): the environment's SH (ENVIRONMENT_SH)
     };
     // Whether kPointProxyTiles^2 points of the largest size cover a target of
     // this size (scatter.geom, POINT_PROXIES); otherwise squares of two triangles.
@@ -82,9 +87,10 @@ private:
                                         {GL_FRAGMENT_SHADER, "scatter.frag"}},
                                        setSampleUnits};
     // The received light for isotropic media, traced or from the SH (TRACED_LIGHT),
-    // through a refracting boundary (REFRACTED_LIGHT).
-    const GlProgram& receivedProgram(bool tracedLight, bool refracted) const;
+    // through a refracting boundary (REFRACTED_LIGHT), with the environment's SH (ENVIRONMENT_SH).
+    const GlProgram& receivedProgram(bool tracedLight, bool refracted, bool environment) const;
     GlProgramVariants receivedPrograms_{{{GL_COMPUTE_SHADER, "received.comp"}}, setSampleUnits};
+    GlProgramVariants environmentPrograms_{{{GL_COMPUTE_SHADER, "environment_sh.comp"}}, setSampleUnits};
     GlProgram upsampleProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "upsample.frag"}};
     GlProgram addProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "add_light.frag"}};
     // The scattered light at the scattering's resolution, before upsampling or adding.

@@ -12,7 +12,7 @@ namespace lucent {
 void SurfacePass::begin(const GlProgram& p, const FrameContext& frame) const {
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
-    glUniform1i(p.uniform("lightCount"), frame.lights.count);
+    glUniform1i(p.uniform("lightCount"), frame.lights.withEnvironment());
     glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(frame.view.cameraPosition));
     glBindTextureUnit(0, frame.targets.frontDepth());
     glUniform1i(p.uniform("frontDepth"), 0);

@@ -5,7 +5,8 @@
 //   unscattered, L e^{-sigma_t c}, and "background": false leaves that out);
 // - single scattering (ss) against the reference, which
 //   tests/reference/environment_light_test.cpp checks against a quadrature;
-// - a one-texel patch draws the image of the directional light of its irradiance.
+// - a one-texel patch draws the image of the directional light of its irradiance,
+//   also through ss's SH projection of the environment (--light sh).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,20 +24,23 @@
 namespace lucent {
 namespace {
 
-LoadedScene sphere(double albedo, int size) {
+LoadedScene sphere(double albedo, int size, double g = 0.0) {
     SceneDesc desc;
     desc.file = "sphere.json";
     desc.camera = test::squareCamera(Vec3(0.0, 0.0, 5.0), Vec3(0.0), 30.0, size);
     desc.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, albedo)};
+    desc.objects[0].medium.g = g;
     LoadedScene scene = loadScene(desc, false);
     attachSamples(scene, {preprocessObject(scene.objects[0], qualityPreset("draft"))});
     return scene;
 }
 
-Image render(const LoadedScene& scene, const std::string& name, const std::map<std::string, double>& values) {
+Image render(const LoadedScene& scene, const std::string& name, const std::map<std::string, double>& values,
+             const std::string& light = "traced") {
     const MethodEntry& entry = findMethod(name);
     MethodOptions options(entry.options);
     for (const auto& [option, value] : values) options.set(option, value);
+    if (name == "ss") options.set("light", light);
     MethodSettings settings;
     settings.surface = false;
     return renderWith(entry, *entry.create(options), scene, settings);
@@ -81,19 +85,36 @@ TEST(EnvironmentLight, TheScatteredWhiteFurnaceMeetsEachMethodsGoal) {
     }
 }
 
-// ss's goal at the sphere's optical radius 2 (docs/accuracy.md), under a sky with a sun.
-TEST(EnvironmentLight, SsMeetsItsGoalAgainstTheReferenceUnderASkyWithASun) {
-    LoadedScene scene = sphere(0.8, 32);
+std::shared_ptr<EnvironmentMap> skyWithASun() {
     Image sky(64, 32);
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 64; ++x)
             sky.at(x, y) = y < 16 ? glm::vec3(0.3f, 0.45f, 0.8f) : glm::vec3(0.15f, 0.12f, 0.1f);
     sky.at(8, 10) = glm::vec3(400.0f, 380.0f, 340.0f);
-    scene.environment = std::make_shared<EnvironmentMap>(sky, 1.0, glm::dmat3(1.0));
+    return std::make_shared<EnvironmentMap>(sky, 1.0, glm::dmat3(1.0));
+}
+
+// ss's goal at the sphere's optical radius 2 (docs/accuracy.md), under a sky with a sun.
+TEST(EnvironmentLight, SsMeetsItsGoalAgainstTheReferenceUnderASkyWithASun) {
+    LoadedScene scene = sphere(0.8, 32);
+    scene.environment = skyWithASun();
     const Image reference = render(scene, "reference", {});
     const double e = compareImages(render(scene, "ss", {}), reference, 2).relativeRmse;
     std::printf("ss: %.2f%% from the reference\n", 100.0 * e);
     EXPECT_LT(e, 0.10);
+}
+
+// --light sh projects the environment onto SH per sample (ScatteringRenderer::setEnvironment):
+// 1 band when isotropic, 5 at g = 0.3, 8 at g = 0.5. The same goal in each.
+TEST(EnvironmentLight, SsFromTheShMeetsItsGoalUnderASkyWithASunAtEachBandCount) {
+    for (double g : {0.0, 0.3, 0.5}) {
+        LoadedScene scene = sphere(0.8, 32, g);
+        scene.environment = skyWithASun();
+        const Image reference = render(scene, "reference", {});
+        const double e = compareImages(render(scene, "ss", {}, "sh"), reference, 2).relativeRmse;
+        std::printf("ss --light sh, g %.1f: %.2f%% from the reference\n", g, 100.0 * e);
+        EXPECT_LT(e, 0.10) << g;
+    }
 }
 
 TEST(EnvironmentLight, AOneTexelPatchDrawsItsDirectionalLightsImageInEveryFastMethod) {
@@ -116,6 +137,10 @@ TEST(EnvironmentLight, AOneTexelPatchDrawsItsDirectionalLightsImageInEveryFastMe
         // The patch's directions spread over its texel, 0.7 degrees: a small share of a pixel's light.
         EXPECT_LT(e, 0.02) << name;
     }
+    // Projected onto the SH (--light sh): the projection's directions and convention.
+    const double e = compareImages(render(withPatch, "ss", {}, "sh"), render(lit, "ss", {}, "sh"), 2).relativeRmse;
+    std::printf("ss --light sh: patch against directional %.3f%%\n", 100.0 * e);
+    EXPECT_LT(e, 0.02);
 }
 
 }  // namespace

@@ -205,6 +205,27 @@ TEST(Extremes, LightInsideOrAtTheSurfaceIsWarnedAbout) {
     EXPECT_FALSE(ssWarns(sphere(2.0), "light 0 lies"));  // a light outside: no warning
 }
 
+// A peaked phase function sees an environment's directions one by one (docs/accuracy.md, Environment lights).
+TEST(Extremes, AnEnvironmentInAStronglyPeakedMediumIsWarnedAbout) {
+    SceneDesc desc;
+    desc.camera = test::squareCamera(Vec3(0.0, 0.0, 5.0), Vec3(0.0), 30.0, 32);
+    desc.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.8)};
+    Image sky(8, 4);
+    for (auto& p : sky.pixels) p = glm::vec3(1.0f);
+    auto warned = [&](double g, bool environment) {
+        desc.objects[0].medium.g = g;
+        LoadedScene scene = loadScene(desc, false);
+        if (environment) scene.environment = std::make_shared<EnvironmentMap>(sky, 1.0, glm::dmat3(1.0));
+        for (const std::string& line : SsMethod::sampleLimitations(scene, SsOptions{}))
+            if (line.find("a peaked phase function sees one by one") != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(warned(-0.5, true));
+    EXPECT_TRUE(warned(0.9, true));
+    EXPECT_FALSE(warned(0.3, true));
+    EXPECT_FALSE(warned(0.9, false));  // point lights: the phase function is exact
+}
+
 // An optically thick object lit only where the camera cannot see (runtime/grazing_light.h).
 TEST(Extremes, AnOpticallyThickCubeLitFromTheSideOnlyIsWarnedAbout) {
     SceneDesc desc;
