@@ -112,6 +112,13 @@ bool spotControls(SpotCone& cone) {
     return changed;
 }
 
+// A map file to light the scene with instead (or at all), loaded before the next frame.
+void environmentFileControl(ViewerState& state) {
+    static char file[1024] = "";
+    ImGui::InputText("map file", file, sizeof file);
+    if (ImGui::Button("load map") && file[0] != '\0') state.environmentToLoad = file;
+}
+
 // The environment's scale and its turn about +y (docs/viewer.md).
 void environmentControls(ViewerState& state) {
     ImGui::PushID("environment");
@@ -125,12 +132,16 @@ void environmentControls(ViewerState& state) {
         state.environmentTurnDegrees = turn;
         state.lightsChanged = true;
     }
+    environmentFileControl(state);
     ImGui::Separator();
     ImGui::PopID();
 }
 
 void lightsPanel(ViewerState& state) {
-    if (state.hasEnvironment) environmentControls(state);
+    if (state.hasEnvironment)
+        environmentControls(state);
+    else
+        environmentFileControl(state);
     for (size_t i = 0; i < state.lights.size(); ++i) {
         Light& light = state.lights[i];
         ImGui::PushID(int(i));
@@ -305,9 +316,25 @@ public:
             // At scale 1, so that any scale the panel or the script sets scales them.
             EnvironmentDesc unscaled = *scene.environment;
             unscaled.scale = 1.0;
-            const auto map = EnvironmentMap::load(unscaled);
-            environmentLights_ = map->asDirectionalLights(SsOptions().environmentLights);
-            gridEnvironmentLights_ = map->asDirectionalLights(kGridEnvironmentLights);
+            useEnvironment(*EnvironmentMap::load(unscaled));
+        }
+    }
+
+    void useEnvironment(const EnvironmentMap& map) {
+        environmentLights_ = map.asDirectionalLights(SsOptions().environmentLights);
+        gridEnvironmentLights_ = map.asDirectionalLights(kGridEnvironmentLights);
+    }
+
+    // The map `environment load` or the panel asked for, in place of the current one.
+    void loadEnvironment(const std::string& file) {
+        try {
+            EnvironmentDesc desc;
+            desc.file = file;
+            useEnvironment(*EnvironmentMap::load(desc));
+            state_.hasEnvironment = true;
+            state_.lightsChanged = true;
+        } catch (const Error& e) {
+            std::fprintf(stderr, "lucent: warning: view: the environment stays as it was: %s\n", e.what());
         }
     }
 
@@ -387,6 +414,15 @@ private:
     // Lights, indices and placements the panel or the script changed reach the
     // renderer, and the multiple scattering is solved again for them.
     void applyEdits() {
+        if (!state_.environmentToLoad.empty()) {
+            loadEnvironment(state_.environmentToLoad);
+            state_.environmentToLoad.clear();
+        }
+        // The environment reaches the samples through SH when their light is read
+        // from the SH and every medium's g allows (setSsLights, runtime/ss_method.h).
+        const bool projected = !environmentLights_.empty() && !state_.tracedLight &&
+                               std::all_of(state_.gs.begin(), state_.gs.end(), environmentShHolds);
+        if (projected != environmentProjected_) state_.lightsChanged = true;
         if (state_.lightsChanged) {
             // Lights added past the scene's limit, with the environment's, are taken back.
             const size_t room = kMaxLights - environmentLights_.size();
@@ -395,7 +431,10 @@ private:
                              environmentLights_.size());
                 state_.lights.resize(room);
             }
-            renderer_.setLights(withEnvironment(environmentLights_));
+            renderer_.setEnvironment({});
+            renderer_.setLights(projected ? state_.lights : withEnvironment(environmentLights_));
+            if (projected) renderer_.setEnvironment(environmentNow(environmentLights_));
+            environmentProjected_ = projected;
             state_.lightsChanged = false;
             grids_.invalidate();
         }
@@ -548,16 +587,22 @@ private:
     // as, and as the fewer lbl and mdom solve for (methods/grid_method.h).
     std::vector<Light> environmentLights_, gridEnvironmentLights_;
 
-    // The state's lights and, scaled and turned as the state says, the environment's.
-    std::vector<Light> withEnvironment(const std::vector<Light>& environment) const {
-        std::vector<Light> out = state_.lights;
+    bool environmentProjected_ = false;  // given to setEnvironment rather than setLights
+
+    // The environment's lights scaled and turned as the state says.
+    std::vector<Light> environmentNow(std::vector<Light> environment) const {
         const glm::dmat3 turn =
             makeSimilarity(1.0, Vec3(0.0, 1.0, 0.0), state_.environmentTurnDegrees, Vec3(0.0)).rotation;
-        for (Light l : environment) {
+        for (Light& l : environment) {
             l.direction = turn * l.direction;
             l.power *= state_.environmentScale;
-            out.push_back(l);
         }
+        return environment;
+    }
+    // The state's lights and those.
+    std::vector<Light> withEnvironment(const std::vector<Light>& environment) const {
+        std::vector<Light> out = state_.lights;
+        for (const Light& l : environmentNow(environment)) out.push_back(l);
         return out;
     }
     std::unique_ptr<OffscreenFrame> frame_;

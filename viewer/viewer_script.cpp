@@ -125,10 +125,14 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
                         "light property must be position, direction, colour, (a spot's) cone or (a point's) radius");
         state.lightsChanged = true;
     } else if (command == "environment") {
-        if (!state.hasEnvironment) throw Error(where, "the scene has no environment light");
         std::string what;
         in >> what;
         double v = 0.0;
+        if (what == "load") {
+            if (!(in >> state.environmentToLoad)) throw Error(where, "environment load needs a map file (.hdr, .exr)");
+            return;
+        }
+        if (!state.hasEnvironment) throw Error(where, "the scene has no environment light");
         if (what == "scale") {
             if (!(in >> v) || !(v >= 0.0 && v <= kMaxMagnitude))
                 throw Error(where, "environment scale needs a number in [0, 1e30]");
@@ -138,7 +142,7 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
                 throw Error(where, "environment turn needs degrees in [-1e6, 1e6]");
             state.environmentTurnDegrees = v;
         } else {
-            throw Error(where, "environment property must be scale or turn");
+            throw Error(where, "environment property must be load, scale or turn");
         }
         state.lightsChanged = true;
     } else if (command == "add") {

@@ -30,6 +30,10 @@ struct ViewerState {
     // rotation, which `environment scale S`, `environment turn DEGREES` and the panel change.
     bool hasEnvironment = false;
     double environmentScale = 1.0, environmentTurnDegrees = 0.0;
+    // A map file `environment load FILE` (or the panel) asks for: loaded before
+    // the next frame in place of the scene's, or the first; when it cannot be
+    // read, a warning says why and the environment stays as it was.
+    std::string environmentToLoad;
     // Each object's placement, from the scene's transforms; the selected one is
     // what `move`, `rotate` and `scale` (and the panel) change.
     std::vector<Similarity> placements;

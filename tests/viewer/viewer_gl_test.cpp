@@ -65,7 +65,7 @@ std::string radianceFile(int width, int height, int x, int y, double value) {
     return text;
 }
 
-// The environment as ss draws it, scaled and turned live.
+// The environment as ss draws it, traced and from the SH, scaled and turned live.
 TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
     test::ScratchDir dir;
     dir.write("sky.hdr", radianceFile(4, 2, 0, 0, 20.0));  // a sun above the horizon towards +x
@@ -77,9 +77,11 @@ TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
                    "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}],
       "render": {"surface": false}})");
     ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
-    const auto lit = dir.path() / "lit.pfm", turned = dir.path() / "turned.pfm", dark = dir.path() / "dark.pfm";
+    const auto lit = dir.path() / "lit.pfm", turned = dir.path() / "turned.pfm", dark = dir.path() / "dark.pfm",
+               projected = dir.path() / "projected.pfm";
     const auto script =
-        dir.write("env.txt", "surface off\nscreenshot " + lit.string() + "\nenvironment turn 180\nscreenshot " +
+        dir.write("env.txt", "surface off\nscreenshot " + lit.string() + "\ntraced off\nscreenshot " +
+                                 projected.string() + "\ntraced on\nenvironment turn 180\nscreenshot " +
                                  turned.string() + "\nenvironment scale 0\nscreenshot " + dark.string() + "\nquit\n");
     const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
                                      "xvfb-run -a -s '-screen 0 320x240x24'");
@@ -88,9 +90,44 @@ TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
     ASSERT_EQ(test::runLucent("render " + scene.string() + " --method ss -o " + rendered.string()).exitCode, 0);
     const Image a = readPfm(lit), b = readPfm(turned), c = readPfm(dark);
     EXPECT_LT(compareImages(a, readPfm(rendered)).relativeRmse, 0.01);
+    // The SH light: the environment projected onto the samples' SH, as ss --light sh draws it.
+    const auto renderedSh = dir.path() / "ss-sh.pfm";
+    ASSERT_EQ(
+        test::runLucent("render " + scene.string() + " --method ss --light sh -o " + renderedSh.string()).exitCode, 0);
+    EXPECT_LT(compareImages(readPfm(projected), readPfm(renderedSh)).relativeRmse, 0.01);
     EXPECT_GT(meanHalf(a, false), 1.5 * meanHalf(a, true));  // lit from +x
     EXPECT_GT(meanHalf(b, true), 1.5 * meanHalf(b, false));  // turned half round: from -x
     EXPECT_EQ(meanHalf(c, true) + meanHalf(c, false), 0.0);
+}
+
+// A map loaded into a scene without an environment lights it as the scene with
+// that map does; a file that is no map leaves it as it was, with a warning.
+TEST(Viewer, AnEnvironmentMapLoadedLiveLightsTheSceneAsTheSceneFileWould) {
+    test::ScratchDir dir;
+    const auto sky = dir.write("sky.hdr", radianceFile(4, 2, 0, 0, 20.0));
+    const auto broken = dir.write("broken.hdr", "#?RADIANCE\nnot a map\n");
+    const std::string object = R"("objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                               R"(", "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}],
+      "render": {"surface": false}})";
+    const std::string camera =
+        R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 64, "height": 64},)";
+    const auto dark = dir.write("dark.json", camera + R"("lights": [],)" + object);
+    const auto lit =
+        dir.write("lit.json", camera + R"("lights": [{"type": "environment", "file": "sky.hdr"}],)" + object);
+    // One object in both: one sample file serves them.
+    ASSERT_EQ(test::runLucent("preprocess " + dark.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto loaded = dir.path() / "loaded.pfm";
+    const auto script = dir.write("load.txt", "environment load " + broken.string() + "\nenvironment load " +
+                                                  sky.string() + "\nscreenshot " + loaded.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + dark.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_CONTAINS(run.stderrText, "broken.hdr");
+    const auto rendered = dir.path() / "ss.pfm";
+    ASSERT_EQ(test::runLucent("render " + lit.string() + " --method ss -o " + rendered.string()).exitCode, 0);
+    const Image image = readPfm(loaded);
+    EXPECT_GT(meanHalf(image, false), 0.0);
+    EXPECT_LT(compareImages(image, readPfm(rendered)).relativeRmse, 0.01);
 }
 
 // The panel is docked beside the view and never covers it: a screenshot with

@@ -163,5 +163,14 @@ TEST(ViewerScript, TheEnvironmentScalesAndTurns) {
         EXPECT_THROW(applyScriptLine(state, bad, "s:3"), Error) << bad;
 }
 
+// `environment load` asks for a map with or without an environment; the viewer loads it.
+TEST(ViewerScript, AnEnvironmentMapIsAskedForByName) {
+    ViewerState state(oneLight());
+    applyScriptLine(state, "environment load other.hdr  # a sky", "s:1");
+    EXPECT_EQ(state.environmentToLoad, "other.hdr");
+    EXPECT_FALSE(state.hasEnvironment);  // until the viewer has read it
+    EXPECT_THROW(applyScriptLine(state, "environment load", "s:2"), Error);
+}
+
 }  // namespace
 }  // namespace lucent
