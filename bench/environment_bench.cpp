@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <map>
 #include <cstdio>
 
 #include "bench/path_truth.h"
@@ -70,12 +71,16 @@ std::shared_ptr<const EnvironmentMap> skyWithSun(const Vec3& toSun, double E) {
     return std::make_shared<const EnvironmentMap>(image, 1.0, glm::dmat3(1.0));
 }
 
+// The median of repeats whole renders with these options (none: the method's defaults); image: the first.
 double medianRenderSeconds(const std::string& method, const LoadedScene& loaded, const MethodSettings& settings,
-                           int repeats, Image* image) {
+                           int repeats, Image* image, const std::map<std::string, std::string>& values = {}) {
+    const MethodEntry& entry = findMethod(method);
+    MethodOptions options(entry.options);
+    for (const auto& [name, value] : values) options.set(name, value);
     std::vector<double> times;
     for (int r = 0; r < repeats; ++r) {
         Stopwatch stopwatch;
-        Image rendered = renderWith(findMethod(method), loaded, settings);
+        Image rendered = renderWith(entry, *entry.create(options), loaded, settings);
         times.push_back(stopwatch.seconds());
         if (r == 0 && image) *image = std::move(rendered);
     }
@@ -114,17 +119,11 @@ void ssCountRow(ResultsRecord& out, const std::string& model, const LoadedScene&
                 int repeats) {
     MethodSettings settings;
     settings.surface = false;
-    const MethodEntry& ss = findMethod("ss");
-    const MethodOptions options = MethodOptions(ss.options).set("env-lights", count);
-    std::vector<double> times;
     Image image;
-    for (int r = 0; r < repeats; ++r) {
-        Stopwatch stopwatch;
-        image = renderWith(ss, *ss.create(options), sky, settings);
-        times.push_back(stopwatch.seconds());
-    }
+    const double seconds =
+        medianRenderSeconds("ss", sky, settings, repeats, &image, {{"env-lights", std::to_string(count)}});
     out.print("| %s | ss | %d | %.4f | %.2f |\n", model.c_str(), count, luminanceRelativeRmse(image, reference),
-              median(times));
+              seconds);
 }
 
 // lbl's and mdom's grids solved for count of the environment's lights, drawn
@@ -232,19 +231,12 @@ struct ShRow {
 ShRow shRow(const LoadedScene& scene, int repeats, int frameSize) {
     MethodSettings settings;
     settings.surface = false;
-    const MethodEntry& ss = findMethod("ss");
-    const MethodOptions options = MethodOptions(ss.options).set("light", "sh");
     const Image reference = renderWith(findMethod("reference"), scene, settings);
-    std::vector<double> times;
     Image image;
-    for (int r = 0; r < repeats; ++r) {
-        Stopwatch stopwatch;
-        image = renderWith(ss, *ss.create(options), scene, settings);
-        times.push_back(stopwatch.seconds());
-    }
+    const double seconds = medianRenderSeconds("ss", scene, settings, repeats, &image, {{"light", "sh"}});
     SsOptions sh;
     sh.tracedLight = false;
-    return {luminanceRelativeRmse(image, reference), median(times), ssFrameMs(scene, frameSize, 20, sh)};
+    return {luminanceRelativeRmse(image, reference), seconds, ssFrameMs(scene, frameSize, 20, sh)};
 }
 
 // ss --light sh: the sky projected onto SH per sample (ScatteringRenderer::setEnvironment)
