@@ -24,7 +24,7 @@ Command addPreprocessCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* sub =
         app.add_subcommand("preprocess", "Sample every translucent object of a scene and write its sample file");
-    sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+    sub->add_option("scene", o->scene, "Scene file: JSON, or glTF 2.0 (.gltf, .glb; docs/gltf.md)")->required();
     sub->add_option("--quality", o->quality, "Preset: draft, default or high")
         ->check(CLI::IsMember({"draft", "default", "high"}));
     sub->add_option("--samples", o->samples, "Target sample count (overrides the preset)")

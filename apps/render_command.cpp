@@ -17,7 +17,7 @@ namespace lucent {
 
 Command addRenderCommand(CLI::App& app) {
     struct Options {
-        std::string scene, output, method, seed = "1";
+        std::string scene, camera, output, method, seed = "1";
         int width = 0, height = 0, threads = 0;
         bool noSurface = false;
         float exposure = 0.0f;
@@ -26,7 +26,9 @@ Command addRenderCommand(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* sub = app.add_subcommand("render", "Render one frame of a scene offscreen");
-    sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+    sub->add_option("scene", o->scene, "Scene file: JSON, or glTF 2.0 (.gltf, .glb; docs/gltf.md)")->required();
+    sub->add_option("--camera", o->camera,
+                    "glTF scenes: the camera to look through, by name (default: the file's first)");
     sub->add_option("-o,--output", o->output, "Image to write: .png (tone-mapped), .pfm or .exr (linear)")->required();
     std::string methodHelp = "Rendering method (default: the scene's render.method):";
     for (const MethodEntry& m : methodTable()) methodHelp += "\n  " + m.name + ": " + m.summary;
@@ -41,7 +43,7 @@ Command addRenderCommand(CLI::App& app) {
         ->check(finiteRange(0.0, 1e30));
     addMethodOptions(*sub, o->methodValues, o->methodOptions);
     return [o] {
-        SceneDesc scene = parseScene(o->scene);
+        SceneDesc scene = parseScene(o->scene, o->camera);
         checkOutputIsNoInput(o->output, inputFilesOf(scene, true));
         checkWritable(o->output);
         if (o->width) scene.camera.width = o->width;

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/fingerprint.h"
+#include "core/gltf_scene.h"
 #include "core/input_file.h"
 #include "core/internal/json_node.h"
 #include "core/limits.h"
@@ -319,7 +320,10 @@ SceneDesc withoutTransforms(SceneDesc scene) {
     return scene;
 }
 
-SceneDesc parseScene(const std::filesystem::path& file) {
+SceneDesc parseScene(const std::filesystem::path& file, const std::string& camera) {
+    if (isGltfFile(file)) return importGltfScene(file, camera);
+    if (!camera.empty())
+        throw Error(file.string(), "a camera was named ('" + camera + "'), but only glTF files hold several cameras");
     return parseSceneText(readTextFile(file, "scene file"), file);
 }
 

@@ -76,6 +76,7 @@ struct MediumDesc {
 struct ObjectDesc {
     std::string name;
     std::filesystem::path mesh;
+    int gltfNode = -1;  // with a glTF mesh file: the node whose mesh this is (core/gltf_scene.h)
     MediumDesc medium;
     std::optional<SurfaceDesc> surface;
     std::filesystem::path samples;
@@ -107,10 +108,13 @@ struct SceneDesc {
     std::optional<EnvironmentDesc> environment;  // at most one
     std::vector<ObjectDesc> objects;
     RenderDesc render;
+    std::vector<std::string> warnings;  // what an imported file (glTF) had that Lucent does not map
 };
 
 // Throws Error("FILE: /json/path: problem"). Paths inside are made relative to the scene file.
-SceneDesc parseScene(const std::filesystem::path& file);
+// A .gltf or .glb file is imported (core/gltf_scene.h), looking through camera
+// (a camera's name; empty: the file's first).
+SceneDesc parseScene(const std::filesystem::path& file, const std::string& camera = {});
 SceneDesc parseSceneText(const std::string& text, const std::filesystem::path& file);
 
 // The scene with every object in its own space and at scale 1.

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/fingerprint.h"
+#include "core/gltf_scene.h"
 #include "core/limits.h"
 
 namespace lucent {
@@ -50,7 +51,10 @@ std::vector<TriangleMesh> loadBlockers(const ObjectDesc& desc, std::vector<std::
 }
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : VolumeObject(desc, loadClosedMesh(desc.mesh, warnings), loadBlockers(desc, warnings)) {}
+    : VolumeObject(
+          desc,
+          desc.gltfNode >= 0 ? loadGltfMesh(desc.mesh, desc.gltfNode, warnings) : loadClosedMesh(desc.mesh, warnings),
+          loadBlockers(desc, warnings)) {}
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers)
     : desc_(desc),
@@ -190,6 +194,7 @@ VolumeObject memoryObject(const std::string& name, TriangleMesh mesh, const Medi
 
 std::vector<VolumeObject> loadObjects(const SceneDesc& scene, std::vector<std::string>& warnings,
                                       std::vector<TriangleMesh> checkedMeshes) {
+    warnings.insert(warnings.end(), scene.warnings.begin(), scene.warnings.end());
     std::vector<VolumeObject> objects;
     objects.reserve(scene.objects.size());
     for (size_t i = 0; i < scene.objects.size(); ++i) {

@@ -13,9 +13,9 @@ if ! command -v clang++ > /dev/null || [ ! -d /usr/lib/llvm-14/lib/clang/14.0.6/
   "${sudo[@]}" apt-get install -y -q --no-install-recommends clang libclang-rt-14-dev
 fi
 cmake --preset fuzz > /dev/null
-cmake --build build-fuzz -j"$(nproc)" --target lucent-fuzz-scene lucent-fuzz-sample_file lucent-fuzz-mesh lucent-fuzz-grid
+cmake --build build-fuzz -j"$(nproc)" --target lucent-fuzz-scene lucent-fuzz-sample_file lucent-fuzz-mesh lucent-fuzz-grid lucent-fuzz-gltf
 mkdir -p build-fuzz/artifacts
-for target in ${FUZZ_TARGETS:-scene sample_file mesh grid}; do
+for target in ${FUZZ_TARGETS:-scene sample_file mesh grid gltf}; do
   corpus=fuzz/corpus/${target//_/-}
   found=build-fuzz/found-$target
   rm -rf "$found" && mkdir -p "$found"

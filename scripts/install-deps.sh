@@ -19,6 +19,8 @@ packages=(
   libcgal-dev libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   # math, parsing, command line
   libembree-dev libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
+  # glTF 2.0 scenes (.gltf, .glb)
+  libtinygltf-dev
   # the sample file's checksum and the objects' fingerprints
   libxxhash-dev
   # image output

@@ -471,6 +471,32 @@ TEST(Cli, PathTracerRendersWithItsOptions) {
     EXPECT_NE(bad.exitCode, 0);
 }
 
+// A glTF file goes wherever a scene file goes: Blender's own export
+// (tests/data/gltf/) is preprocessed beside itself and rendered, its camera
+// picked by name; a camera it lacks is one error line.
+TEST(Cli, ABlenderExportedGltfIsPreprocessedAndRenderedAsASceneIs) {
+    test::ScratchDir dir;
+    const auto model = dir.path() / "jade.glb";
+    std::filesystem::copy_file(test::sourceDir() / "tests/data/gltf/blender-cube.glb", model);
+    const auto pre = test::runLucent("preprocess " + model.string() + " --quality draft");
+    ASSERT_EQ(pre.exitCode, 0) << pre.stderrText;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "jade.Jade.lsf")) << pre.stderrText;
+    EXPECT_NE(pre.stderrText.find("absorbs and does not scatter"), std::string::npos) << pre.stderrText;
+    const auto out = dir.path() / "jade.pfm";
+    const auto render = test::runLucent("render " + model.string() +
+                                        " --camera View --method ss --width 8 --height 8 -o " + out.string());
+    ASSERT_EQ(render.exitCode, 0) << render.stderrText;
+    EXPECT_EQ(readPfm(out).width, 8);
+    const auto noCamera = test::runLucent("render " + model.string() + " --camera Side -o " + out.string());
+    EXPECT_NE(noCamera.exitCode, 0);
+    EXPECT_NE(noCamera.stderrText.find("jade.glb: has no camera named 'Side' (cameras: 'View')"), std::string::npos)
+        << noCamera.stderrText;
+    const auto sceneFile = dir.write("scene.json", scene((test::modelsDir() / "sphere.obj").string()));
+    const auto named = test::runLucent("render " + sceneFile.string() + " --camera View -o " + out.string());
+    EXPECT_NE(named.exitCode, 0);
+    EXPECT_NE(named.stderrText.find("only glTF files hold several cameras"), std::string::npos) << named.stderrText;
+}
+
 // The same --seed gives byte-identical sample files and images for any --threads,
 // through the command line, on a homogeneous sphere and on the torus cube (an
 // opaque blocker inside).
