@@ -12,6 +12,7 @@ file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR}
      ${SOURCE_DIR}/viewer/*.cpp ${SOURCE_DIR}/viewer/*.h
      ${SOURCE_DIR}/apps/*.cpp ${SOURCE_DIR}/apps/*.h
      ${SOURCE_DIR}/bench/*.cpp ${SOURCE_DIR}/bench/*.h
+     ${SOURCE_DIR}/python/*.cpp ${SOURCE_DIR}/python/*.h
      ${SOURCE_DIR}/examples/*.cpp ${SOURCE_DIR}/examples/*.h
      ${SOURCE_DIR}/fuzz/*.cpp ${SOURCE_DIR}/fuzz/*.h
      ${SOURCE_DIR}/tests/*.cpp ${SOURCE_DIR}/tests/*.h)

@@ -34,6 +34,7 @@ const std::map<std::string, std::set<std::string>> kMayInclude = {
     {"bench", {"core", "preprocess", "reference", "runtime", "hybrid", "methods"}},
     {"apps", {"core", "preprocess", "reference", "runtime", "hybrid", "methods", "viewer", "bench"}},
     {"examples", {"core", "preprocess", "runtime"}},
+    {"python", {"core", "preprocess", "reference", "runtime", "hybrid", "methods"}},
 };
 
 struct Include {

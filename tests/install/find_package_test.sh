@@ -13,6 +13,14 @@ cmake --install "$build_dir" --prefix "$prefix" > /dev/null
 
 # Public headers only: nothing of runtime/internal, and each public runtime header
 # compiles on its own from the installed include directory.
+# The Python module, when built, lands in the prefix's dist-packages and finds
+# the installed libraries from there (docs/python.md).
+module=$(find "$prefix" -path '*dist-packages/lucent*.so' | head -1)
+if [ -n "$module" ]; then
+  (cd "$scratch" && PYTHONPATH=$(dirname "$module") /usr/bin/python3 -c \
+    'import lucent, sys; sys.exit(0 if lucent.__file__.startswith(sys.argv[1]) and lucent.methods() else 1)' "$prefix") ||
+    { echo "FAIL: the installed Python module does not import from $module"; exit 1; }
+fi
 if [ -e "$prefix/include/lucent/runtime/internal" ]; then
   echo "FAIL: the runtime's private headers were installed"; exit 1
 fi
