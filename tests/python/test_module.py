@@ -133,3 +133,16 @@ def test_methods_and_presets_describe_this_build():
     assert "marble" in presets or "skin1" in presets
     for p in presets.values():
         assert all(0.0 <= a <= 1.0 for a in p["albedo"])
+
+
+def test_progress_of_long_work_goes_to_the_callback_or_to_tqdm(tmp_path, capfd):
+    scene = lucent.load_scene(str(sphere_scene(tmp_path)))
+    # Long enough (over a second) for Progress to report.
+    long = dict(method="path", width=64, height=64, options={"samples": 1024})
+    stages = []
+    lucent.render(scene, progress=lambda stage, fraction: stages.append((stage, fraction)), **long)
+    assert stages and stages[-1] == ("path tracing", 1.0)
+    assert all(0.0 <= f <= 1.0 for _, f in stages)
+    capfd.readouterr()
+    lucent.render(scene, **long)  # no callback: a tqdm bar, tqdm being installed
+    assert "path tracing" in capfd.readouterr().err

@@ -290,5 +290,27 @@ TEST(Viewer, BadScriptLineIsOneClearError) {
     EXPECT_NE(run.stderrText.find("bad.txt:2: no light with that index"), std::string::npos) << run.stderrText;
 }
 
+// Blender's own glTF export opens in the viewer through its camera: black as
+// the importer warns (the glass only absorbs), lit once its albedo scatters.
+TEST(Viewer, ABlenderExportedGltfOpensThroughItsCamera) {
+    test::ScratchDir dir;
+    const auto model = dir.path() / "jade.glb";
+    std::filesystem::copy_file(test::sourceDir() / "tests/data/gltf/blender-cube.glb", model);
+    ASSERT_EQ(test::runLucent("preprocess " + model.string() + " --quality draft").exitCode, 0);
+    const auto black = dir.path() / "black.pfm", lit = dir.path() / "lit.pfm";
+    const auto script =
+        dir.write("s.txt", "screenshot " + black.string() + "\nselect 0\nalbedo 0.8 0.8 0.8\nscreenshot " +
+                               lit.string() + "\nquit\n");
+    const auto run =
+        test::runLucent("view " + model.string() + " --camera View --width 64 --height 64 --script " + script.string(),
+                        "xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_NE(run.stderrText.find("absorbs and does not scatter"), std::string::npos) << run.stderrText;
+    const Image a = readPfm(black), b = readPfm(lit);
+    ASSERT_EQ(a.width, 64);
+    EXPECT_EQ(meanHalf(a, true) + meanHalf(a, false), 0.0);
+    EXPECT_GT(meanHalf(b, true) + meanHalf(b, false), 0.0);
+}
+
 }  // namespace
 }  // namespace lucent
