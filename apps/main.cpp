@@ -5,6 +5,7 @@
 
 #include "apps/commands.h"
 #include "apps/heap_pages.h"
+#include "apps/mpi_ranks.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
@@ -38,6 +39,8 @@ int main(int argc, char** argv) {
     } catch (const lucent::Error& e) {
         std::fprintf(stderr, "lucent: error: %s\n", e.what());
         return 1;
+    } catch (const lucent::QuietExit& e) {
+        return e.code;  // another rank said why
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "lucent: error: out of memory\n");
         return 1;

@@ -23,6 +23,17 @@ namespace lucent {
 // 3e-2 moves them by up to 0.03 points, 0.1 by up to 0.3.
 inline constexpr double kDefaultGaussianCutoff = 1e-2;
 
+// The rows of the image one process of several renders (lucent render under
+// mpirun, docs/mpi.md): bands of kRows rows dealt round-robin, so that each
+// rank gets a share of every part of the frame. A method that honours it
+// (splitsRows) leaves the other rows 0, and the ranks' images sum to the whole;
+// its pixels are seeded by their position, so the sum does not depend on ranks.
+struct RowShare {
+    static constexpr int kRows = 8;
+    int rank = 0, ranks = 1;
+    bool owns(int row) const { return (row / kRows) % ranks == rank; }
+};
+
 // What every method shares. What only some methods take (paths per pixel, the
 // grid, the OpenGL backend) each method declares as its options (MethodEntry::
 // options, core/method_options.h) and reads when it is created.
@@ -32,6 +43,7 @@ struct MethodSettings {
     uint64_t seed = 1;    // random numbers: the same seed gives the same image
     double cutoff =
         kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
+    RowShare rows;               // the rows to render, by the methods that split rows (MethodEntry::splitsRows)
 };
 
 class Method {
@@ -63,6 +75,7 @@ struct MethodEntry {
     std::vector<OptionSpec> options;  // what only this method takes, declared by its class
     // The method with its options read: MethodOptions(options) with what the caller set.
     std::function<std::unique_ptr<Method>(const MethodOptions&)> create;
+    bool splitsRows = false;  // honours MethodSettings::rows: ranks under mpirun share its image
     // The method with every option at its default.
     std::unique_ptr<Method> createDefault() const { return create(MethodOptions(options)); }
 };

@@ -22,9 +22,9 @@ const std::vector<MethodEntry>& methodTable() {
         {"ss", "single scattering from the preprocessed samples, on OpenGL (thesis 3.4), refraction included", true,
          true, always, SsOptions::specs(), SsMethod::create},
         {"reference", "exact single scattering by quadrature on the CPU, refraction included (the ground truth of ss)",
-         false, false, always, ReferenceMethod::options(), ReferenceMethod::create},
+         false, false, always, ReferenceMethod::options(), ReferenceMethod::create, true},
         {"path", "full transport by volumetric path tracing on the CPU (the ground truth of multiple scattering)",
-         false, false, always, PathMethod::options(), PathMethod::create},
+         false, false, always, PathMethod::options(), PathMethod::create, true},
 #ifdef LUCENT_HAVE_OPENCL
         {"lbl",
          "single scattering plus multiple scattering by photon marching and Lattice-Boltzmann lighting on OpenCL "

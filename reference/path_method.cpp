@@ -56,6 +56,7 @@ Image PathMethod::render(const LoadedScene& scene, const MethodSettings& setting
     path.seed = settings.seed;
     path.threads = settings.threads;
     path.surface = settings.surface;
+    path.rows = settings.rows;
     return PathTracer(scene.desc, scene.objects, scene.environment.get()).render(path).mean;
 }
 

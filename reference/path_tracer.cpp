@@ -252,7 +252,7 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), [&](const tbb::blocked_range<int>& range) {
             for (int y = range.begin(); y < range.end(); ++y) {
-                for (int x = 0; x < cam.width; ++x) {
+                for (int x = 0; x < cam.width && settings.rows.owns(y); ++x) {
                     // One stream per pixel: the image is the same for any thread count.
                     const uint64_t pixel = uint64_t(y) * uint64_t(cam.width) + uint64_t(x);
                     PathSampler rng = settings.stratified ? PathSampler(settings.seed, pixel)

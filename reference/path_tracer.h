@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/environment_map.h"
+#include "core/method.h"
 #include "core/image.h"
 #include "reference/path_sampler.h"
 #include "core/scene.h"
@@ -41,6 +42,7 @@ struct PathSettings {
     // Each pixel's paths stratified in their first free flights (PathSampler);
     // false: independent paths (lucent-bench-path measures the difference).
     bool stratified = true;
+    RowShare rows;  // the rows to render; the others stay 0
 };
 
 class PathTracer {

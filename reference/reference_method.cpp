@@ -34,6 +34,7 @@ Image ReferenceMethod::render(const LoadedScene& scene, const MethodSettings& se
     reference.tolerance = tolerance_;
     reference.surface = settings.surface;
     reference.threads = settings.threads;
+    reference.rows = settings.rows;
     return ReferenceRenderer(scene.desc, scene.objects, scene.environment.get()).render(reference);
 }
 

@@ -130,7 +130,7 @@ Image ReferenceRenderer::render(const ReferenceSettings& settings) const {
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), [&](const tbb::blocked_range<int>& rows) {
             for (int y = rows.begin(); y < rows.end(); ++y) {
-                for (int x = 0; x < cam.width; ++x) {
+                for (int x = 0; x < cam.width && settings.rows.owns(y); ++x) {
                     const Rgb L = radiance(rays.origin(), rays.direction(x + 0.5, y + 0.5), settings);
                     image.at(x, y) = glm::vec3(L);
                 }

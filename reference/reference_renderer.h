@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/environment_map.h"
+#include "core/method.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
@@ -40,6 +41,7 @@ struct ReferenceSettings {
     double tolerance = 1e-3;  // relative error target of each pixel's integral
     bool surface = true;      // add the Phong surface reflection of objects that have a surface
     int threads = 0;          // 0: all cores
+    RowShare rows;            // the rows to render; the others stay 0
 };
 
 class ReferenceRenderer {

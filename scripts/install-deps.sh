@@ -41,6 +41,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcgal-demo clang-format
   # the plots of lucent bench accuracy
   python3-matplotlib
+  # MPI: lucent render under mpirun shares an image's rows among ranks (docs/mpi.md)
+  libopenmpi-dev openmpi-bin
   # the Python module (python/) and its tests: pybind11 for Debian's python3, numpy, pytest, tqdm
   pybind11-dev python3-dev python3-numpy python3-pytest python3-tqdm
   # the CAD test solids: models/cad/*.scad are exported to closed STL meshes

@@ -239,6 +239,15 @@ void placeNode(const tinygltf::Model& model, int node, const glm::dmat4& parent,
     if (reached[size_t(node)])
         throw Error(file, "/nodes/" + std::to_string(node) + " is reached twice; glTF's nodes form a tree");
     reached[size_t(node)] = true;
+    const tinygltf::Node& n = model.nodes[size_t(node)];
+    const auto check = [&](int index, size_t count, const char* what) {
+        if (index >= 0 && size_t(index) >= count)
+            throw Error(file, "/nodes/" + std::to_string(node) + " refers to " + what + " " + std::to_string(index) +
+                                  " of " + std::to_string(count));
+    };
+    check(n.mesh, model.meshes.size(), "mesh");
+    check(n.camera, model.cameras.size(), "camera");
+    check(n.skin, model.skins.size(), "skin");
     const glm::dmat4 world = parent * localMatrix(model.nodes[size_t(node)], file, node);
     out.push_back({node, world});
     for (int child : model.nodes[size_t(node)].children) placeNode(model, child, world, file, reached, out);

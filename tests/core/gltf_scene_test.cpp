@@ -380,6 +380,8 @@ TEST(GltfScene, HostileFilesGetOneErrorLine) {
     EXPECT_CONTAINS(importErrorOf(box.asset, [](json& g) { g["accessors"][1]["componentType"] = 5126; }),
                     "indices must be unsigned integer SCALARs");
     EXPECT_CONTAINS(importErrorOf(box.asset, [](json& g) { g["nodes"][0]["children"] = {0}; }), "reached twice");
+    // Found by lucent-fuzz-gltf: a node naming a mesh that does not exist.
+    EXPECT_CONTAINS(importErrorOf(box.asset, [](json& g) { g["nodes"][0]["mesh"] = 7; }), "refers to mesh 7 of 1");
     EXPECT_CONTAINS(importErrorOf(box.asset,
                                   [](json& g) {
                                       g["nodes"][0]["translation"] = {1e300, 0, 0};

@@ -230,5 +230,38 @@ TEST(PathTracer, SameSeedSameImageForAnyThreadCount) {
     EXPECT_NE(tracer.render(one).mean.pixels, tracer.render(two).mean.pixels);
 }
 
+// Under mpirun each rank renders its RowShare and rank 0 sums the images
+// (docs/mpi.md): the shares must cover every row once, leave the others 0, and
+// sum to the single-process image bit for bit, for the path tracer and the reference.
+TEST(PathTracer, RowSharesOfThreeRanksSumToTheWholeImage) {
+    SceneDesc scene;
+    scene.camera.width = 6;
+    scene.camera.height = 30;  // four bands of 8 rows, the last cut short
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
+    scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.9)};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    PathSettings paths;
+    paths.samplesPerPixel = 4;
+    ReferenceSettings reference;
+    const Image wholePaths = PathTracer(scene, objects).render(paths).mean;
+    const Image wholeReference = ReferenceRenderer(scene, objects).render(reference);
+    Image sumPaths(6, 30), sumReference(6, 30);
+    for (int rank = 0; rank < 3; ++rank) {
+        paths.rows = reference.rows = RowShare{rank, 3};
+        const Image p = PathTracer(scene, objects).render(paths).mean;
+        const Image r = ReferenceRenderer(scene, objects).render(reference);
+        for (size_t i = 0; i < p.pixels.size(); ++i)
+            sumPaths.pixels[i] += p.pixels[i], sumReference.pixels[i] += r.pixels[i];
+        for (int y = 0; y < 30; ++y)
+            if (!paths.rows.owns(y)) EXPECT_EQ(p.at(3, y), glm::vec3(0.0f)) << "rank " << rank << " row " << y;
+    }
+    EXPECT_EQ(sumPaths.pixels, wholePaths.pixels);
+    EXPECT_EQ(sumReference.pixels, wholeReference.pixels);
+    double lit = 0.0;
+    for (const auto& p : wholePaths.pixels) lit += p.r;
+    EXPECT_GT(lit, 0.0);
+}
+
 }  // namespace
 }  // namespace lucent

@@ -1,0 +1,47 @@
+#pragma once
+// lucent render under mpirun (docs/mpi.md): every rank parses and loads the
+// scene, the methods that split rows (path, reference) render their share of
+// the rows, and rank 0 sums the shares and writes the image. Before anything is
+// written every rank says whether it failed: a failure anywhere ends every rank
+// with a non-zero exit, one error line (the lowest failing rank's) and no
+// output, never a rank left waiting. A rank killed outright is mpirun's to end:
+// it stops the job, and rank 0, waiting in the sum, writes nothing.
+#include <string>
+
+#include "core/image.h"
+
+namespace lucent {
+
+class Ranks {
+public:
+    // Joins the job when mpirun started this process; alone otherwise. A build
+    // without MPI started by mpirun with more than one rank is an Error saying so.
+    Ranks();
+    ~Ranks();
+    Ranks(const Ranks&) = delete;
+    Ranks& operator=(const Ranks&) = delete;
+
+    int rank() const { return rank_; }
+    int size() const { return size_; }
+
+    // Collective: whether any rank failed, and whether this rank is the one to say why.
+    struct Verdict {
+        bool anyFailed = false;
+        bool reportHere = false;
+    };
+    Verdict agree(bool failedHere) const;
+
+    // Collective: every rank's image summed into rank 0's (the others' are left as they are).
+    void sumIntoRankZero(Image& image) const;
+
+private:
+    int rank_ = 0, size_ = 1;
+    bool joined_ = false;
+};
+
+// Thrown to leave with this exit code and print nothing (another rank reported).
+struct QuietExit {
+    int code = 1;
+};
+
+}  // namespace lucent
