@@ -2,9 +2,11 @@
 // lucent render under mpirun (docs/mpi.md): every rank parses and loads the
 // scene, the methods that split rows (path, reference) render their share of
 // the rows, and rank 0 sums the shares and writes the image. Before anything is
-// written every rank says whether it failed: a failure anywhere ends every rank
-// with a non-zero exit, one error line (the lowest failing rank's) and no
-// output, never a rank left waiting. A rank killed outright is mpirun's to end:
+// written every rank says whether it failed: a failure anywhere ends the job
+// with a non-zero exit, one error line and no output, never a rank left
+// waiting. The lowest failing rank prints the line and exits 1; the others
+// exit 0 quietly, since mpirun kills the whole job at the first non-zero exit,
+// which could cut off the line. A rank killed outright is mpirun's to end:
 // it stops the job, and rank 0, waiting in the sum, writes nothing.
 #include <string>
 

@@ -134,7 +134,9 @@ Command addRenderCommand(CLI::App& app) {
         const Ranks::Verdict verdict = ranks.agree(!failure.empty());
         if (verdict.anyFailed) {
             if (verdict.reportHere) throw Error(failure);
-            throw QuietExit{1};
+            // Exit 0 and let the reporting rank's status end the job: a second
+            // non-zero exit could make mpirun kill that rank before its line is out.
+            throw QuietExit{0};
         }
         if (frame->split) ranks.sumIntoRankZero(frame->image);
         if (ranks.rank() == 0) writeFrame(*o, *frame);
