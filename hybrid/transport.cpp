@@ -20,21 +20,32 @@ constexpr double kMarchBudget = 2.5e9;
 constexpr double kMostAspect = 4.0;
 
 // Why the uncollided flux cannot be integrated cell to cell here, or "" when it can.
-std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid, size_t sourceCells) {
-    if (sourceCells == 0) return "";
-    for (int f = 0; f < 6; ++f)
-        if (p.reflective[f])
-            return "a reflective face would need the sources' mirror images; the uncollided flux is swept";
+std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid) {
+    static const char* const axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a)
+        if (p.reflective[2 * a] && p.reflective[2 * a + 1])
+            return std::string("both ") + axes[a] +
+                   " faces are reflective, so the sources' mirror images repeat without end; the uncollided flux "
+                   "is swept";
     const double longest = std::max({grid.edges.x, grid.edges.y, grid.edges.z}),
                  shortest = std::min({grid.edges.x, grid.edges.y, grid.edges.z});
     if (longest > kMostAspect * shortest)
         return "cells more than " + std::to_string(int(kMostAspect)) +
                " times longer on one axis than on another; the uncollided flux is swept";
-    const double work = uncollidedFluxWork(grid, sourceCells);
-    if (work > kMarchBudget)
-        return std::to_string(sourceCells) + " source cells in " + std::to_string(grid.count()) +
-               " cells are too many to integrate cell to cell in about 10 s; the uncollided flux is swept";
     return "";
+}
+
+// Why auto does not march here though it could: the far field would take long.
+std::string whyNotAuto(const TransportProblem& p, const DomGrid& grid, const std::vector<double>& density,
+                       size_t sourceCells) {
+    const double work = uncollidedFluxWork(grid, density, p.reflective);
+    if (work <= kMarchBudget) return "";
+    const int images = mirrorImages(p.reflective);
+    return std::to_string(sourceCells) + " source cells" +
+           (images > 1 ? " and their " + std::to_string(images - 1) + " mirror images each" : std::string()) + " in " +
+           std::to_string(grid.count()) +
+           " cells are too many to integrate cell to cell in about 10 s; the uncollided flux is swept (\"marched\" "
+           "asks for it all the same)";
 }
 
 }  // namespace
@@ -78,17 +89,19 @@ TransportResult solveTransport(const TransportProblem& p) {
             }
     TransportResult r;
     const size_t sourceCells = size_t(std::count_if(density.begin(), density.end(), [](double q) { return q > 0.0; }));
-    const std::string whyNot = whyNotMarched(p, grid, sourceCells);
+    std::string whyNot = sourceCells == 0 ? "" : whyNotMarched(p, grid);
     if (p.uncollided == TransportProblem::Uncollided::Marched && !whyNot.empty())
         throw Error(p.file.string() +
                     ": /solver/uncollided: cannot be \"marched\": " + whyNot.substr(0, whyNot.find(';')));
-    r.uncollidedMarched = p.uncollided != TransportProblem::Uncollided::Swept && whyNot.empty();
+    if (p.uncollided == TransportProblem::Uncollided::Auto && whyNot.empty() && sourceCells > 0)
+        whyNot = whyNotAuto(p, grid, density, sourceCells);
+    r.uncollidedMarched = p.uncollided != TransportProblem::Uncollided::Swept && whyNot.empty() && sourceCells > 0;
     if (p.uncollided == TransportProblem::Uncollided::Auto) r.uncollidedWhy = whyNot;
     try {
         DomSolver solver(device, grid, p.directions, p.bands, p.reflective);
         if (r.uncollidedMarched) {
             // The first-collision source: generation zero integrated, the sweeps carry the rest.
-            source = uncollidedFlux(grid, density, p.bands);
+            source = uncollidedFlux(grid, density, p.bands, p.reflective);
             solver.setUncollidedFlux(device.marchQueue, source);
         } else {
             solver.setSource(device.marchQueue, source);

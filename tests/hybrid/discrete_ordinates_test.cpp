@@ -372,28 +372,32 @@ TEST(Transport, FirstCollisionSourceScattersToTheInfiniteMediumFlux) {
 }
 
 TEST(Transport, MarchingIsRefusedWhereItCannotHold) {
-    // A mirror would need the sources' images: auto sweeps and says why; asked
-    // for, marching is refused with the reason.
+    // Both faces of an axis reflecting would mirror the sources' images
+    // without end: auto sweeps and says why; asked for, marching is refused
+    // with the reason. One reflective face per axis marches.
     const std::string text = R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [4, 4, 4]},
-        "boundary": {"z-": "reflective"},
+        "boundary": {"z-": "reflective", "z+": "FACE"},
         "regions": [{"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1.0, "source": 1.0}],
         "points": [[0.5, 0.5, 0.5]], "solver": {"directions": 24, "uncollided": "HOW"}})";
-    auto with = [&](const std::string& how) {
+    auto with = [&](const std::string& face, const std::string& how) {
         std::string t = text;
+        t.replace(t.find("FACE"), 4, face);
         t.replace(t.find("HOW"), 3, how);
         return parseTransportProblemText(t, "mirror.json");
     };
-    const TransportResult r = solveTransport(with("auto"));
+    const TransportResult r = solveTransport(with("reflective", "auto"));
     EXPECT_FALSE(r.uncollidedMarched);
-    EXPECT_NE(r.uncollidedWhy.find("reflective face"), std::string::npos) << r.uncollidedWhy;
+    EXPECT_NE(r.uncollidedWhy.find("both z faces are reflective"), std::string::npos) << r.uncollidedWhy;
     try {
-        solveTransport(with("marched"));
+        solveTransport(with("reflective", "marched"));
         FAIL() << "no error";
     } catch (const Error& e) {
         const std::string message = e.what();
-        EXPECT_EQ(message.rfind("mirror.json: /solver/uncollided: cannot be \"marched\": a reflective face", 0), 0u)
+        EXPECT_EQ(
+            message.rfind("mirror.json: /solver/uncollided: cannot be \"marched\": both z faces are reflective", 0), 0u)
             << message;
     }
+    EXPECT_TRUE(solveTransport(with("vacuum", "auto")).uncollidedMarched);
 }
 
 }  // namespace
