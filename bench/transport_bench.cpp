@@ -1,0 +1,134 @@
+// `lucent transport` on Kobayashi's 3-D benchmark problems (models/transport/,
+// docs/transport.md): every detector against its truth, with the solver's time
+// and memory. Problem 1's truths are the published fluxes (bench/
+// kobayashi_reference.h); the absorbers of problems 2 and 3 are checked against
+// the uncollided flux integrated without cells (bench/uncollided_quadrature.h);
+// the scattering cases of problems 2 and 3 have no truth here and are run and
+// recorded only.
+//
+//   build/bin/lucent-bench-transport [--problems 1,2,3] [--cases absorber,scatter] [--details]
+//                                    [--record docs/results/kobayashi.md]
+#include <CLI/CLI.hpp>
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "bench/kobayashi_reference.h"
+#include "bench/results_record.h"
+#include "bench/uncollided_quadrature.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/transport_problem.h"
+#include "hybrid/transport.h"
+
+using namespace lucent;
+
+namespace {
+
+std::string format(const char* f, double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, f, v);
+    return buffer;
+}
+
+double peakResidentMiB() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024.0;
+}
+
+// The truth at each point of problem `n`'s case, or an empty list where there is none.
+std::vector<double> truths(int n, const std::string& which, const TransportProblem& p) {
+    std::vector<double> t;
+    if (n == 1) {
+        for (const KobayashiDetector& d : kKobayashiProblem1) t.push_back(which == "absorber" ? d.absorber : d.scatter);
+        for (size_t i = 0; i < p.points.size(); ++i)
+            if (p.points[i] != kKobayashiProblem1[i].at)
+                throw Error(p.file.string() + ": its points are not problem 1's");
+    } else if (which == "absorber") {
+        for (const Vec3& x : p.points) t.push_back(uncollidedQuadrature(p, x, 256));
+    }
+    return t;
+}
+
+void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::vector<std::string>& cases,
+               bool details) {
+    out.print(
+        "`lucent transport` on the problem files models/transport/kobayashi-N-CASE.json (2 cm cells, the\n"
+        "benchmark's), against problem 1's published fluxes (exact for the absorber, Monte Carlo with\n"
+        "scattering) and the uncollided flux integrated without cells for the absorbers of problems 2 and 3;\n"
+        "the errors are the solver's cell values against the point values at the detectors. Time: the\n"
+        "solve, uncollided flux included; memory: the process's peak resident set so far.\n\n");
+    out.tableHeader({"problem", "case", "cells", "directions", "uncollided", "iterations", "time (s)",
+                     "peak memory (MiB)", "detectors", "worst error", "mean absolute error", "worst at"},
+                    {false, false, true, true, false, true, true, true, true, true, true, false});
+    std::vector<std::string> lines;
+    std::string device;
+    for (int n : problems)
+        for (const std::string& which : cases) {
+            const TransportProblem p =
+                parseTransportProblem(std::string(LUCENT_SOURCE_DIR) + "/models/transport/kobayashi-" +
+                                      std::to_string(n) + "-" + which + ".json");
+            const hybrid::TransportResult r = hybrid::solveTransport(p);
+            if (device.empty()) out.addDevice("opencl: " + (device = r.device));
+            const std::vector<double> truth = truths(n, which, p);
+            double worst = 0.0, sum = 0.0;
+            size_t at = 0;
+            for (size_t i = 0; i < truth.size(); ++i) {
+                const double e = r.flux[i] / truth[i] - 1.0;
+                sum += std::abs(e);
+                if (std::abs(e) > std::abs(worst)) worst = e, at = i;
+                if (details) {
+                    const Vec3& x = p.points[i];
+                    char row[160];
+                    std::snprintf(row, sizeof row, "| %d | %s | (%g, %g, %g) | %.5g | %.5g | %+.2f%% |\n", n,
+                                  which.c_str(), x.x, x.y, x.z, r.flux[i], truth[i], 100.0 * e);
+                    lines.push_back(row);
+                }
+            }
+            const Vec3& w = p.points[at];
+            char where[64];
+            std::snprintf(where, sizeof where, "(%g, %g, %g)", w.x, w.y, w.z);
+            out.tableRow(
+                {std::to_string(n), which,
+                 std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" + std::to_string(p.cells[2]),
+                 std::to_string(p.directions), r.uncollidedMarched ? "marched" : "swept", std::to_string(r.iterations),
+                 format("%.1f", r.seconds), format("%.0f", peakResidentMiB()), std::to_string(p.points.size()),
+                 truth.empty() ? "(no truth)" : format("%+.1f%%", 100.0 * worst),
+                 truth.empty() ? "" : format("%.1f%%", 100.0 * sum / double(truth.size())),
+                 truth.empty() ? "" : where});
+        }
+    if (details && !lines.empty()) {
+        out.print("\nEvery detector with a truth:\n\n");
+        out.tableHeader({"problem", "case", "detector (cm)", "flux", "truth", "error"},
+                        {false, false, false, true, true, true});
+        for (const std::string& line : lines) out.print("%s", line.c_str());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Lucent transport benchmark: Kobayashi's 3-D problems against their truths"};
+    std::vector<int> problems{1, 2, 3};
+    std::vector<std::string> cases{"absorber", "scatter"};
+    bool details = false;
+    std::string recordFile;
+    app.add_option("--problems", problems, "Kobayashi's problems run")->delimiter(',')->check(CLI::Range(1, 3));
+    app.add_option("--cases", cases, "Their cases")->delimiter(',')->check(CLI::IsMember({"absorber", "scatter"}));
+    app.add_flag("--details", details, "Also every detector's flux, truth and error");
+    app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (!recordFile.empty()) checkWritable(recordFile);
+        ResultsRecord out(argc, argv);
+        kobayashi(out, problems, cases, details);
+        if (!recordFile.empty()) out.write(recordFile);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "lucent-bench-transport: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
