@@ -20,7 +20,7 @@ constexpr double kMarchBudget = 2.5e9;
 constexpr double kMostAspect = 4.0;
 
 // Why the uncollided flux cannot be integrated cell to cell here, or "" when it can.
-std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid) {
+std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid, size_t sourceCells) {
     static const char* const axes[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a)
         if (p.reflective[2 * a] && p.reflective[2 * a + 1])
@@ -32,6 +32,12 @@ std::string whyNotMarched(const TransportProblem& p, const DomGrid& grid) {
     if (longest > kMostAspect * shortest)
         return "cells more than " + std::to_string(int(kMostAspect)) +
                " times longer on one axis than on another; the uncollided flux is swept";
+    const size_t images = size_t(mirrorImages(p.reflective));
+    if (sourceCells * images > kMostMarchedSources)
+        return std::to_string(sourceCells) + " source cells" +
+               (images > 1 ? " and their mirror images, " + std::to_string(sourceCells * images) + " in all," : "") +
+               " are more than the " + std::to_string(kMostMarchedSources) +
+               " it is integrated for; the uncollided flux is swept";
     return "";
 }
 
@@ -89,7 +95,7 @@ TransportResult solveTransport(const TransportProblem& p) {
             }
     TransportResult r;
     const size_t sourceCells = size_t(std::count_if(density.begin(), density.end(), [](double q) { return q > 0.0; }));
-    std::string whyNot = sourceCells == 0 ? "" : whyNotMarched(p, grid);
+    std::string whyNot = sourceCells == 0 ? "" : whyNotMarched(p, grid, sourceCells);
     if (p.uncollided == TransportProblem::Uncollided::Marched && !whyNot.empty())
         throw Error(p.file.string() +
                     ": /solver/uncollided: cannot be \"marched\": " + whyNot.substr(0, whyNot.find(';')));

@@ -31,6 +31,10 @@
 namespace lucent::hybrid {
 
 constexpr int kNearCells = 3;
+// The most source cells, their mirror images counted, the uncollided flux is
+// integrated for: each takes a cell of the source list and the tree over it,
+// about 200 bytes in all (400 MB here).
+constexpr size_t kMostMarchedSources = size_t(1) << 21;
 
 // The mirror images of each source cell, itself included, with the reflective
 // faces x-, x+, y-, y+, z-, z+: 1, 2, 4 or 8; 0 when both faces of an axis are
@@ -40,7 +44,8 @@ int mirrorImages(const std::array<bool, 6>& reflective);
 // An upper bound on the traversal steps the far field costs for the source
 // density `source` (per cell): the points it traces, counted, times half the
 // grid's summed dimensions; what the caller weighs against its budget.
-// Infinite where both faces of an axis are reflective.
+// Infinite where both faces of an axis are reflective. The caller keeps the
+// source cells and their images within kMostMarchedSources.
 double uncollidedFluxWork(const DomGrid& grid, const std::vector<double>& source,
                           const std::array<bool, 6>& reflective);
 

@@ -398,6 +398,21 @@ TEST(Transport, MarchingIsRefusedWhereItCannotHold) {
             << message;
     }
     EXPECT_TRUE(solveTransport(with("vacuum", "auto")).uncollidedMarched);
+    // More source cells, their images counted, than the list and tree over
+    // them are sized for: refused before they are built.
+    const std::string many = R"({"domain": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [65, 65, 65]},
+        "boundary": {"x-": "reflective", "y-": "reflective", "z-": "reflective"},
+        "regions": [{"min": [0, 0, 0], "max": [1, 1, 1], "sigma_t": 1.0, "source": 1.0}],
+        "points": [[0.5, 0.5, 0.5]], "solver": {"directions": 24, "bands": 1, "uncollided": "marched"}})";
+    try {
+        solveTransport(parseTransportProblemText(many, "many.json"));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("274625 source cells and their mirror images, 2197000 in all, are more "
+                                             "than the 2097152 it is integrated for"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace
