@@ -97,14 +97,17 @@ struct Gather {
         const glm::dvec3 local = extinction(t);
         bool uniform = true;
         const glm::dvec3 tau = opticalDepth(mid, x, &uniform);
+        // A box's light crosses what its centre's does only if its 2^3 Gauss points' does too.
+        const double at = 0.5 / std::sqrt(3.0);
+        std::array<Vec3, 8> points;
+        std::array<glm::dvec3, 8> taus;
         if (lo != last) {
-            // A box's light crosses what its centre's does only if its Gauss points' does too.
-            const double at = 0.5 / std::sqrt(3.0);
             glm::dvec3 mean(0.0);
-            for (int i = 0; i < 8; ++i)
-                mean +=
-                    opticalDepth(mid + size * Vec3(i & 1 ? at : -at, i & 2 ? at : -at, i & 4 ? at : -at), x, &uniform) /
-                    8.0;
+            for (int i = 0; i < 8; ++i) {
+                points[i] = mid + size * Vec3(i & 1 ? at : -at, i & 2 ? at : -at, i & 4 ? at : -at);
+                taus[i] = opticalDepth(points[i], x, &uniform);
+                mean += taus[i] / 8.0;
+            }
             const glm::dvec3 off = glm::abs(mean - tau);
             if (!uniform && std::max({off.x, off.y, off.z}) > kKinkDepth) return false;
         }
@@ -114,6 +117,11 @@ struct Gather {
         }
         int order[3];
         for (int a = 0; a < 3; ++a) order[a] = sigma * size[a] * grid.edges[a] > kTwoPointDepth ? 3 : 2;
+        if (lo != last && order[0] == 2 && order[1] == 2 && order[2] == 2) {
+            // The 2-point rule's points are the ones just traced.
+            for (int i = 0; i < 8; ++i) addPoint(points[i], Vec3(0.0), q * 0.125, taus[i], local, x, sum, y);
+            return true;
+        }
         addGauss(order, mid, size, q, local, x, sum, y);
         return true;
     }
