@@ -61,7 +61,8 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
         "benchmark's), against problem 1's published fluxes (exact for the absorber, Monte Carlo with\n"
         "scattering) and the uncollided flux integrated without cells for the absorbers of problems 2 and 3;\n"
         "the errors are the solver's cell values against the point values at the detectors. Time: the\n"
-        "solve, uncollided flux included; memory: the process's peak resident set so far.\n\n");
+        "median of the repeated solves, uncollided flux included; memory: the process's peak resident\n"
+        "set so far.\n\n");
     out.tableHeader({"problem", "case", "cells", "directions", "uncollided", "iterations", "time (s)",
                      "peak memory (MiB)", "detectors", "worst error", "mean absolute error", "worst at"},
                     {false, false, true, true, false, true, true, true, true, true, true, false});
