@@ -35,6 +35,13 @@ constexpr double kTwoPointDepth = 0.5;
 // and doubles problem 1's time).
 constexpr double kKinkDepth = 0.2;
 
+// The 2-point Gauss-Legendre rule on [-1/2, 1/2]^3: point i's offset, bit a of
+// i choosing its side on axis a (each weighs 1/8).
+Vec3 gaussCorner(int i) {
+    static const double at = 0.5 / std::sqrt(3.0);
+    return Vec3(i & 1 ? at : -at, i & 2 ? at : -at, i & 4 ? at : -at);
+}
+
 // The gathering of one problem: the grid, its near range, the harmonics'
 // signs and the medium unfolded across the reflective faces.
 struct Gather {
@@ -65,12 +72,11 @@ struct Gather {
     // cells and through the mean, corrects it: the rule's own error cancels in
     // the ratio (a control variate). Per channel.
     glm::dvec3 heterogeneity(const Cell& s, const Cell& t, const glm::dvec3& mean) const {
-        static const double gauss = 0.5 / std::sqrt(3.0);
         glm::dvec3 through(0.0), uniformly(0.0);
         for (int i = 0; i < 8; ++i) {
-            const Vec3 y = centre(s) + Vec3(i & 1 ? gauss : -gauss, i & 2 ? gauss : -gauss, i & 4 ? gauss : -gauss);
+            const Vec3 y = centre(s) + gaussCorner(i);
             for (int j = 0; j < 8; ++j) {
-                const Vec3 x = centre(t) + Vec3(j & 1 ? gauss : -gauss, j & 2 ? gauss : -gauss, j & 4 ? gauss : -gauss);
+                const Vec3 x = centre(t) + gaussCorner(j);
                 const double r = glm::length((x - y) * grid.edges), w = 1.0 / (r * r);
                 through += w * glm::exp(-opticalDepth(y, x));
                 uniformly += w * glm::exp(-mean * r);
@@ -98,13 +104,12 @@ struct Gather {
         bool uniform = true;
         const glm::dvec3 tau = opticalDepth(mid, x, &uniform);
         // A box's light crosses what its centre's does only if its 2^3 Gauss points' does too.
-        const double at = 0.5 / std::sqrt(3.0);
         std::array<Vec3, 8> points;
         std::array<glm::dvec3, 8> taus;
         if (lo != last) {
             glm::dvec3 mean(0.0);
             for (int i = 0; i < 8; ++i) {
-                points[i] = mid + size * Vec3(i & 1 ? at : -at, i & 2 ? at : -at, i & 4 ? at : -at);
+                points[i] = mid + size * gaussCorner(i);
                 taus[i] = opticalDepth(points[i], x, &uniform);
                 mean += taus[i] / 8.0;
             }
