@@ -1,5 +1,7 @@
 #include "apps/mpi_ranks.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -72,6 +74,59 @@ void Ranks::sumIntoRankZero(Image& image) const {
 #else
     (void)image;
 #endif
+}
+
+#ifdef LUCENT_HAVE_MPI
+namespace {
+// MPI counts are ints: long messages go in pieces.
+constexpr size_t kMostPerMessage = size_t(1) << 30;
+}  // namespace
+#endif
+
+void Ranks::send(int to, const float* values, size_t count) const {
+#ifdef LUCENT_HAVE_MPI
+    for (size_t at = 0; at < count; at += kMostPerMessage)
+        MPI_Send(values + at, int(std::min(kMostPerMessage, count - at)), MPI_FLOAT, to, 0, MPI_COMM_WORLD);
+#else
+    (void)to, (void)values, (void)count;
+    throw Error("internal: send without MPI");
+#endif
+}
+
+void Ranks::receive(int from, float* values, size_t count) const {
+#ifdef LUCENT_HAVE_MPI
+    for (size_t at = 0; at < count; at += kMostPerMessage)
+        MPI_Recv(values + at, int(std::min(kMostPerMessage, count - at)), MPI_FLOAT, from, 0, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+#else
+    (void)from, (void)values, (void)count;
+    throw Error("internal: receive without MPI");
+#endif
+}
+
+void Ranks::sum(double* values, int count) const {
+#ifdef LUCENT_HAVE_MPI
+    if (!joined_) return;
+    // Summed on rank 0 and sent out: an all-reduce may round differently on different ranks.
+    if (rank_ == 0)
+        MPI_Reduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+    else
+        MPI_Reduce(values, nullptr, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Bcast(values, count, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+#else
+    (void)values, (void)count;
+#endif
+}
+
+void Ranks::abortJob(const std::string& why) const {
+#ifdef LUCENT_HAVE_MPI
+    if (joined_) {
+        std::fprintf(stderr, "lucent: error: %s\n", why.c_str());
+        std::fflush(stderr);
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+#endif
+    throw Error(why);
 }
 
 }  // namespace lucent

@@ -11,20 +11,24 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/peers.h"
 
 namespace lucent {
 
-class Ranks {
+class Ranks : public Peers {
 public:
     // Joins the job when mpirun started this process; alone otherwise. A build
     // without MPI started by mpirun with more than one rank is an Error saying so.
     Ranks();
-    ~Ranks();
+    ~Ranks() override;
     Ranks(const Ranks&) = delete;
     Ranks& operator=(const Ranks&) = delete;
 
-    int rank() const { return rank_; }
-    int size() const { return size_; }
+    int rank() const override { return rank_; }
+    int size() const override { return size_; }
+    void send(int to, const float* values, size_t count) const override;
+    void receive(int from, float* values, size_t count) const override;
+    void sum(double* values, int count) const override;
 
     // Collective: whether any rank failed, and whether this rank is the one to say why.
     struct Verdict {
@@ -35,6 +39,11 @@ public:
 
     // Collective: every rank's image summed into rank 0's (the others' are left as they are).
     void sumIntoRankZero(Image& image) const;
+
+    // A failure in the middle of shared work, where the other ranks may be
+    // waiting for this one: says why in one error line and ends every rank of
+    // the job (MPI_Abort). Alone, throws it as an Error.
+    [[noreturn]] void abortJob(const std::string& why) const;
 
 private:
     int rank_ = 0, size_ = 1;

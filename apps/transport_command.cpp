@@ -1,7 +1,9 @@
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "apps/commands.h"
+#include "apps/mpi_ranks.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -13,6 +15,48 @@
 
 namespace lucent {
 
+namespace {
+
+void checkOutputs(const std::string& problem, const std::string& output, const std::string& volume) {
+    checkOutputIsNoInput(output, {problem});
+    checkWritable(output);
+    if (volume.empty()) return;
+    if (std::filesystem::path(volume).extension() != ".vdb")
+        throw Error(volume, "--vdb writes OpenVDB files: the name must end in .vdb");
+    checkOutputIsNoInput(volume, {problem});
+    checkOutputsDistinct({output, volume});
+    checkWritable(volume);
+}
+
+#ifdef LUCENT_HAVE_OPENCL
+void writeResult(const TransportProblem& p, const hybrid::TransportResult& r, const std::string& output,
+                 const std::string& volume) {
+    AtomicFile out(output);
+    std::ofstream& s = out.stream();
+    s.precision(9);
+    s << "x,y,z,flux\n";
+    for (size_t i = 0; i < p.points.size(); ++i)
+        s << p.points[i].x << ',' << p.points[i].y << ',' << p.points[i].z << ',' << r.flux[i] << '\n';
+    // The volume first: if it cannot be written, neither file appears.
+    if (!volume.empty())
+        writeVdbGrid(volume, "flux", p.cells, p.domain.min,
+                     p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]), r.cellFlux);
+    out.commit();
+    if (!r.uncollidedWhy.empty()) std::fprintf(stderr, "lucent: transport: %s\n", r.uncollidedWhy.c_str());
+    std::string shared;
+    if (r.ranks > 1)
+        shared = ", " + std::to_string(r.ranks) + " ranks trading " +
+                 std::to_string(r.haloBytesPerIteration / (1 << 20)).substr(0, 6) + " MiB per iteration";
+    std::fprintf(stderr,
+                 "lucent: transport: %d directions, %d moments, uncollided flux %s, %d iterations%s in %.2f s on "
+                 "'%s'%s\n",
+                 p.directions, p.bands * p.bands, r.uncollidedMarched ? "marched" : "swept", r.iterations,
+                 r.converged ? "" : " (not converged)", r.seconds, r.device.c_str(), shared.c_str());
+}
+#endif
+
+}  // namespace
+
 Command addTransportCommand(CLI::App& app) {
     auto problem = std::make_shared<std::string>();
     auto output = std::make_shared<std::string>();
@@ -23,35 +67,32 @@ Command addTransportCommand(CLI::App& app) {
     auto volume = std::make_shared<std::string>();
     sub->add_option("--vdb", *volume, "Also the flux in every cell, as an OpenVDB float grid named 'flux' (.vdb)");
     return [problem, output, volume] {
-        const TransportProblem p = parseTransportProblem(*problem);
-        checkOutputIsNoInput(*output, {*problem});
-        checkWritable(*output);
-        if (!volume->empty()) {
-            if (std::filesystem::path(*volume).extension() != ".vdb")
-                throw Error(*volume, "--vdb writes OpenVDB files: the name must end in .vdb");
-            checkOutputIsNoInput(*volume, {*problem});
-            checkOutputsDistinct({*output, *volume});
-            checkWritable(*volume);
+        Ranks ranks;
+        // Every rank reads the problem and checks the outputs; a failure there
+        // is agreed on, so that no rank is left waiting in the sweeps.
+        std::optional<TransportProblem> p;
+        std::string failure;
+        try {
+            p = parseTransportProblem(*problem);
+            checkOutputs(*problem, *output, *volume);
+        } catch (const Error& e) {
+            failure = e.what();
+        }
+        const Ranks::Verdict verdict = ranks.agree(!failure.empty());
+        if (verdict.anyFailed) {
+            if (verdict.reportHere) throw Error(failure);
+            throw QuietExit{0};  // the reporting rank's status ends the job
         }
 #ifdef LUCENT_HAVE_OPENCL
-        const hybrid::TransportResult r = hybrid::solveTransport(p);
-        AtomicFile out(*output);
-        std::ofstream& s = out.stream();
-        s.precision(9);
-        s << "x,y,z,flux\n";
-        for (size_t i = 0; i < p.points.size(); ++i)
-            s << p.points[i].x << ',' << p.points[i].y << ',' << p.points[i].z << ',' << r.flux[i] << '\n';
-        // The volume first: if it cannot be written, neither file appears.
-        if (!volume->empty())
-            writeVdbGrid(*volume, "flux", p.cells, p.domain.min,
-                         p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]), r.cellFlux);
-        out.commit();
-        if (!r.uncollidedWhy.empty()) std::fprintf(stderr, "lucent: transport: %s\n", r.uncollidedWhy.c_str());
-        std::fprintf(stderr,
-                     "lucent: transport: %d directions, %d moments, uncollided flux %s, %d iterations%s in %.2f s on "
-                     "'%s'\n",
-                     p.directions, p.bands * p.bands, r.uncollidedMarched ? "marched" : "swept", r.iterations,
-                     r.converged ? "" : " (not converged)", r.seconds, r.device.c_str());
+        hybrid::TransportResult r;
+        try {
+            r = hybrid::solveTransport(*p, &ranks);
+        } catch (const Error& e) {
+            ranks.abortJob(e.what());  // the others may be waiting for this rank's faces
+        } catch (const std::bad_alloc&) {
+            ranks.abortJob("out of memory");
+        }
+        if (ranks.rank() == 0) writeResult(*p, r, *output, *volume);
 #else
         throw Error(*problem +
                     ": lucent transport needs OpenCL, and this build has none (install the OpenCL "

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "hybrid/internal/dom_solver.h"
+#include "hybrid/internal/sweep_halo.h"
 #include "hybrid/internal/uncollided_flux.h"
 #include "hybrid/ordinates.h"
 
@@ -54,78 +56,166 @@ std::string whyNotAuto(const TransportProblem& p, const DomGrid& grid, const std
            "asks for it all the same)";
 }
 
-}  // namespace
-
-TransportResult solveTransport(const TransportProblem& p) {
-    const Stopwatch stopwatch;
-    ClDevice device;
+// The problem's materials in the cells [lo, hi) of its grid.
+struct Materials {
     DomGrid grid;
-    grid.dims = p.cells;
-    grid.edges = p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]);
-    const size_t count = grid.count();
-    const std::string what = "the " + std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" +
-                             std::to_string(p.cells[2]) + " cells of " + p.file.string();
-    // The host's copies: the source and the flux read back (M float4 per cell), the materials.
-    device.checkMemory(DomSolver::bytesFor(p.cells, p.directions, p.bands), DomSolver::largestBufferFor(count, p.bands),
-                       what, count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
-    grid.extinction.assign(count,
-                           glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
-    grid.scattering.assign(count, glm::vec4(0.0f));
-    grid.phase.assign(count, glm::vec4(0.0f));
+    std::vector<glm::vec4> source;  // [cell][M] radiance moments per unit length
+    std::vector<double> density;    // particles per unit volume per unit time
+};
+
+Materials materialsIn(const TransportProblem& p, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+    Materials m;
+    m.grid.dims = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    m.grid.edges = p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]);
+    const size_t count = m.grid.count();
     const int moments = p.bands * p.bands;
-    std::vector<glm::vec4> source(count * moments, glm::vec4(0.0f));
-    std::vector<double> density(count, 0.0);
+    m.grid.extinction.assign(count,
+                             glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // a flux wanted everywhere: points may lie in vacuum
+    m.grid.scattering.assign(count, glm::vec4(0.0f));
+    m.grid.phase.assign(count, glm::vec4(0.0f));
+    m.source.assign(count * moments, glm::vec4(0.0f));
+    m.density.assign(count, 0.0);
+    const GridIndex index = m.grid.index();
     // Cells belong to the last region holding their centre; the rest are vacuum.
-    for (int k = 0; k < p.cells[2]; ++k)
-        for (int j = 0; j < p.cells[1]; ++j)
-            for (int i = 0; i < p.cells[0]; ++i) {
-                const Vec3 centre = p.domain.min + grid.edges * Vec3(i + 0.5, j + 0.5, k + 0.5);
+    for (int k = lo[2]; k < hi[2]; ++k)
+        for (int j = lo[1]; j < hi[1]; ++j)
+            for (int i = lo[0]; i < hi[0]; ++i) {
+                const Vec3 centre = p.domain.min + m.grid.edges * Vec3(i + 0.5, j + 0.5, k + 0.5);
                 const TransportRegion* in = nullptr;
                 for (const TransportRegion& r : p.regions)
                     if (r.box.contains(centre)) in = &r;
                 if (!in) continue;
-                const size_t v = i + size_t(p.cells[0]) * (j + size_t(p.cells[1]) * k);
+                const size_t v = index(i - lo[0], j - lo[1], k - lo[2]);
                 const DeltaM dm = deltaM(in->g, p.bands);
-                grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 1.0f);
-                grid.scattering[v] = glm::vec4(glm::vec3(float((1.0 - dm.f) * in->sigmaS)), 0.0f);
-                grid.phase[v] = glm::vec4(float(in->g), 0.0f, 0.0f, 0.0f);
+                m.grid.extinction[v] = glm::vec4(glm::vec3(float(in->sigmaT - dm.f * in->sigmaS)), 1.0f);
+                m.grid.scattering[v] = glm::vec4(glm::vec3(float((1.0 - dm.f) * in->sigmaS)), 0.0f);
+                m.grid.phase[v] = glm::vec4(float(in->g), 0.0f, 0.0f, 0.0f);
                 // An isotropic emission q / (4 pi) per unit length: its zero moment is q / sqrt(4 pi).
-                source[v * moments] = glm::vec4(glm::vec3(float(in->source / std::sqrt(4.0 * kPi))), 0.0f);
-                density[v] = in->source;
+                m.source[v * moments] = glm::vec4(glm::vec3(float(in->source / std::sqrt(4.0 * kPi))), 0.0f);
+                m.density[v] = in->source;
             }
-    TransportResult r;
-    const size_t sourceCells = size_t(std::count_if(density.begin(), density.end(), [](double q) { return q > 0.0; }));
-    std::string whyNot = sourceCells == 0 ? "" : whyNotMarched(p, grid, sourceCells);
+    return m;
+}
+
+// Whether the uncollided flux is marched, and why not where auto sweeps it.
+void decideUncollided(const TransportProblem& p, const Materials& whole, TransportResult& r) {
+    const size_t sourceCells =
+        size_t(std::count_if(whole.density.begin(), whole.density.end(), [](double q) { return q > 0.0; }));
+    std::string whyNot = sourceCells == 0 ? "" : whyNotMarched(p, whole.grid, sourceCells);
     if (p.uncollided == TransportProblem::Uncollided::Marched && !whyNot.empty())
         throw Error(p.file.string() +
                     ": /solver/uncollided: cannot be \"marched\": " + whyNot.substr(0, whyNot.find(';')));
     if (p.uncollided == TransportProblem::Uncollided::Auto && whyNot.empty() && sourceCells > 0)
-        whyNot = whyNotAuto(p, grid, density, sourceCells);
+        whyNot = whyNotAuto(p, whole.grid, whole.density, sourceCells);
     r.uncollidedMarched = p.uncollided != TransportProblem::Uncollided::Swept && whyNot.empty() && sourceCells > 0;
     if (p.uncollided == TransportProblem::Uncollided::Auto) r.uncollidedWhy = whyNot;
-    try {
-        DomSolver solver(device, grid, p.directions, p.bands, p.reflective);
-        if (r.uncollidedMarched) {
-            // The first-collision source: generation zero integrated, the sweeps carry the rest.
-            source = uncollidedFlux(grid, density, p.bands, p.reflective);
-            solver.setUncollidedFlux(device.marchQueue, source);
+}
+
+// Every rank's zero moments into rank 0's grid of the whole problem, phi = sqrt(4 pi) phi_00.
+std::vector<float> gatherFlux(const TransportProblem& p, const std::vector<glm::vec4>& flux, int moments,
+                              const SweepPartition& part, const Peers* peers) {
+    const GridIndex box{part.dims()};
+    std::vector<float> mine(box.count());
+    for (size_t v = 0; v < mine.size(); ++v) mine[v] = float(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));
+    const int ranks = peers ? peers->size() : 1;
+    if (ranks == 1) return mine;
+    if (peers->rank() != 0) {
+        peers->send(0, mine.data(), mine.size());
+        return {};
+    }
+    const GridIndex whole{p.cells};
+    std::vector<float> all(whole.count());
+    for (int r = 0; r < ranks; ++r) {
+        const SweepPartition share = partitionSweeps(p.cells, r, ranks);
+        const GridIndex at{share.dims()};
+        std::vector<float> theirs;
+        if (r == 0) {
+            theirs = std::move(mine);
         } else {
-            solver.setSource(device.marchQueue, source);
+            theirs.resize(at.count());
+            peers->receive(r, theirs.data(), theirs.size());
         }
+        for (size_t v = 0; v < theirs.size(); ++v) {
+            const std::array<int, 3> c = at.cell(v);
+            all[whole(c[0] + share.lo[0], c[1] + share.lo[1], c[2] + share.lo[2])] = theirs[v];
+        }
+    }
+    return all;
+}
+
+}  // namespace
+
+TransportFootprint transportFootprint(const std::array<int, 3>& cells, int directions, int bands, int ranks,
+                                      bool whole) {
+    TransportFootprint f;
+    const SweepPartition part = partitionSweeps(cells, 0, ranks);  // rank 0's share: the largest
+    f.processGrid = part.ranks;
+    const std::array<int, 3> d = part.dims();
+    const double mine = double(d[0]) * d[1] * d[2], all = double(cells[0]) * cells[1] * cells[2];
+    const int moments = bands * bands;
+    f.deviceBytes = double(DomSolver::bytesFor(d, directions, bands, ranks > 1));
+    // Materials (three float4, the source's moments, the density) and the flux read back.
+    const double perCell = (3 + moments) * 16.0 + 8.0;
+    f.hostBytes = mine * (perCell + 16.0 * moments) + (whole && ranks > 1 ? all * perCell : 0.0);
+    // Each octant's K directions cross each face between ranks once: N per face cell.
+    const double faces =
+        double(cells[2]) * (double(cells[1]) * (part.ranks[0] - 1) + double(cells[0]) * (part.ranks[1] - 1));
+    f.haloBytesPerIteration = faces * directions * 16.0;
+    return f;
+}
+
+TransportResult solveTransport(const TransportProblem& p, const Peers* peers) {
+    const Stopwatch stopwatch;
+    const int ranks = peers ? peers->size() : 1, rank = peers ? peers->rank() : 0;
+    const SweepPartition part = partitionSweeps(p.cells, rank, ranks);
+    ClDevice device;
+    const int moments = p.bands * p.bands;
+    const std::array<int, 3> dims = part.dims();
+    const size_t count = size_t(dims[0]) * dims[1] * dims[2];
+    const std::string what = "the " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+                             std::to_string(dims[2]) + " cells of " + p.file.string();
+    // The host's copies: the source and the flux read back (M float4 per cell), the materials.
+    device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks > 1),
+                       DomSolver::largestBufferFor(count, p.bands), what,
+                       count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
+    // The first-collision source of a rank's cells sees every source through
+    // the whole grid: each rank holds all of it unless the uncollided flux is swept.
+    const bool wholeNeeded = ranks == 1 || p.uncollided != TransportProblem::Uncollided::Swept;
+    const Materials whole = wholeNeeded ? materialsIn(p, {0, 0, 0}, p.cells) : Materials{};
+    const Materials local = ranks == 1 ? Materials{} : materialsIn(p, part.lo, part.hi);
+    const Materials& mine = ranks == 1 ? whole : local;
+    TransportResult r;
+    if (wholeNeeded) decideUncollided(p, whole, r);  // swept: nothing to decide
+    BoundaryFlags reflective = p.reflective;
+    for (int f = 0; f < 6; ++f) reflective[f] = reflective[f] && part.neighbour[f] < 0;  // inside: a neighbour's
+    std::optional<SweepHalo> halo;
+    if (ranks > 1) halo.emplace(*peers, part, p.directions);
+    try {
+        DomSolver solver(device, mine.grid, p.directions, p.bands, reflective, halo ? &*halo : nullptr);
+        if (r.uncollidedMarched)  // the first-collision source: generation zero integrated, the sweeps carry the rest
+            solver.setUncollidedFlux(
+                device.marchQueue, uncollidedFlux(whole.grid, whole.density, p.bands, p.reflective, part.lo, part.hi));
+        else
+            solver.setSource(device.marchQueue, mine.source);
         const DomSolver::Run run = solver.run(device.marchQueue, p.tolerance, p.maxIterations);
-        const std::vector<glm::vec4> flux = solver.totalFlux(device.marchQueue);
         r.iterations = run.iterations;
         r.converged = run.converged;
         r.device = device.name();
-        r.cellFlux.resize(count);
-        for (size_t v = 0; v < count; ++v) r.cellFlux[v] = float(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));
-        for (const Vec3& x : p.points) {
-            int c[3];
-            for (int a = 0; a < 3; ++a)
-                c[a] = std::clamp(int(std::floor((x[a] - p.domain.min[a]) / grid.edges[a])), 0, p.cells[a] - 1);
-            const size_t v = c[0] + size_t(p.cells[0]) * (c[1] + size_t(p.cells[1]) * c[2]);
-            r.flux.push_back(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));  // phi = sqrt(4 pi) phi_00
+        r.cellFlux = gatherFlux(p, solver.totalFlux(device.marchQueue), moments, part, peers);
+        if (halo) {
+            double sent = halo->bytesSent();
+            halo->sum(&sent, 1);
+            r.haloBytesPerIteration = run.iterations > 0 ? sent / run.iterations : 0.0;
         }
+        r.ranks = ranks;
+        if (rank == 0)
+            for (const Vec3& x : p.points) {
+                int c[3];
+                for (int a = 0; a < 3; ++a)
+                    c[a] =
+                        std::clamp(int(std::floor((x[a] - p.domain.min[a]) / mine.grid.edges[a])), 0, p.cells[a] - 1);
+                r.flux.push_back(r.cellFlux[GridIndex{p.cells}(c[0], c[1], c[2])]);
+            }
         r.seconds = stopwatch.seconds();
         return r;
     } catch (const cl::Error& e) {

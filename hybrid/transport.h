@@ -2,9 +2,11 @@
 // `lucent transport`: the discrete ordinates solver of thesis 5.3 on a problem
 // file (core/transport_problem.h) instead of a scene, so that it can be checked
 // against the standard transport benchmarks. Runs on OpenCL.
+#include <array>
 #include <string>
 #include <vector>
 
+#include "core/peers.h"
 #include "core/transport_problem.h"
 
 namespace lucent::hybrid {
@@ -18,8 +20,26 @@ struct TransportResult {
     std::string device;
     bool uncollidedMarched = false;  // the sources' uncollided flux integrated cell to cell, not swept
     std::string uncollidedWhy;       // why it was swept when auto could not march it
+    int ranks = 1;
+    double haloBytesPerIteration = 0;  // sent between the ranks, all of them, per iteration
 };
 
-TransportResult solveTransport(const TransportProblem& problem);
+// With peers (the ranks of an MPI job), each rank sweeps its share of the
+// cells and trades the radiance crossing its faces with its neighbours (KBA,
+// hybrid/internal/sweep_halo.h); every rank calls this, and rank 0's result
+// holds the flux (the others': no flux).
+TransportResult solveTransport(const TransportProblem& problem, const Peers* peers = nullptr);
+
+// What each rank of `ranks` holds and sends for a grid of `cells` (the largest
+// share; docs/scaling.md). whole: the uncollided flux is not "swept", so every
+// rank also holds the whole grid's materials for the first-collision source.
+struct TransportFootprint {
+    std::array<int, 2> processGrid{1, 1};
+    double deviceBytes = 0;            // the sweeps' buffers
+    double hostBytes = 0;              // materials, source and the flux read back
+    double haloBytesPerIteration = 0;  // sent between all ranks
+};
+TransportFootprint transportFootprint(const std::array<int, 3>& cells, int directions, int bands, int ranks,
+                                      bool whole);
 
 }  // namespace lucent::hybrid

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/refraction.h"
 #include "core/spherical_harmonics.h"
+#include "hybrid/internal/sweep_halo.h"
 
 namespace lucent::hybrid {
 
@@ -54,17 +55,17 @@ std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
 
 size_t DomSolver::largestBufferFor(size_t voxels, int bands) { return voxels * bands * bands * sizeof(glm::vec4); }
 
-size_t DomSolver::bytesFor(const std::array<int, 3>& d, int directions, int bands) {
+size_t DomSolver::bytesFor(const std::array<int, 3>& d, int directions, int bands, bool shared) {
     const size_t voxels = size_t(d[0]) * d[1] * d[2];
-    // source, flux, last flux, total; three float4 materials; two face buffers; two boundaries
+    // source, flux, last flux, total; three float4 materials; two face buffers; two boundaries (three shared)
     return 4 * largestBufferFor(voxels, bands) + voxels * 3 * sizeof(glm::vec4) +
            (size_t(d[0]) * (d[1] + d[2])) * directions / 8 * sizeof(glm::vec4) +
-           2 * faceOffset(6, d, directions) * sizeof(glm::vec4);
+           (shared ? 3 : 2) * faceOffset(6, d, directions) * sizeof(glm::vec4);
 }
 
 DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands,
-                     const BoundaryFlags& reflective)
-    : grid_(grid), ordinates_(ordinatesFor(directions)), moments_(bands * bands) {
+                     const BoundaryFlags& reflective, SweepHalo* halo)
+    : grid_(grid), ordinates_(ordinatesFor(directions)), moments_(bands * bands), halo_(halo) {
     if (bands < 1 || bands > kMaxBands)
         throw Error("discrete ordinates: 1 to " + std::to_string(kMaxBands) + " bands of moments, not " +
                     std::to_string(bands));
@@ -115,6 +116,7 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     yFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[2] * k * sizeof(glm::vec4));
     zFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[1] * k * sizeof(glm::vec4));
     for (cl::Buffer& b : boundary_) b = zeroBuffer(cx, faceOffset(6, dm, n) * sizeof(glm::vec4));
+    haloIn_ = zeroBuffer(cx, (halo ? faceOffset(6, dm, n) : 1) * sizeof(glm::vec4));
     partial_ = zeroBuffer(cx, kPartials * sizeof(glm::vec4));
     // The inner boundary: per face, Fresnel's reflectance of each direction
     // leaving the medium by it, at its angle to the boundary's normal there (a
@@ -161,6 +163,8 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     sweep_.setArg(16, innerFace_);
     sweep_.setArg(19, fresnel_);
     sweep_.setArg(20, cl_int(mirrors_));
+    sweep_.setArg(21, haloIn_);
+    sweep_.setArg(22, cl_int(halo ? halo->mask() : 0));
     scatter_.setArg(2, source_);
     scatter_.setArg(3, scattering_);
     scatter_.setArg(4, phase_);
@@ -186,6 +190,7 @@ void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm
     Rgb power(0.0);  // generation zero's, as iterate() measures each generation
     for (size_t v = 0; v < grid_.count(); ++v)
         for (int c = 0; c < 3; ++c) power[c] += flux[v * moments_][c];
+    if (halo_) halo_->sum(&power[0], 3);
     total_power_ += power;
     previous_power_ = power;
     queue.finish();
@@ -200,11 +205,19 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     sweep_.setArg(18, mirror_[(swaps_ + 1) % 2]);
     for (int octant = 0; octant < 8; ++octant) {
         sweep_.setArg(12, cl_int(octant));
-        for (int diagonal = 0; diagonal <= d[1] + d[2] - 2; ++diagonal) {
-            const int kFirst = std::max(0, diagonal - (d[1] - 1)), kLast = std::min(d[2] - 1, diagonal);
-            sweep_.setArg(14, cl_int(diagonal));
-            sweep_.setArg(15, cl_int(kFirst));
-            queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)));
+        // Shared with other ranks, the sweep goes in blocks of z (KBA): each
+        // block's diagonals j + k once the upstream ranks' faces are in.
+        const int blocks = halo_ ? halo_->blocks() : 1;
+        for (int b = 0; b < blocks; ++b) {
+            const std::array<int, 2> k = halo_ ? halo_->block(b) : std::array<int, 2>{0, d[2]};
+            if (halo_) halo_->receive(queue, haloIn_, octant, b);
+            for (int diagonal = k[0]; diagonal <= d[1] - 1 + k[1] - 1; ++diagonal) {
+                const int kFirst = std::max(k[0], diagonal - (d[1] - 1)), kLast = std::min(k[1] - 1, diagonal);
+                sweep_.setArg(14, cl_int(diagonal));
+                sweep_.setArg(15, cl_int(kFirst));
+                queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)));
+            }
+            if (halo_) halo_->send(queue, boundary_[(swaps_ + 1) % 2], octant, b);
         }
     }
     ++swaps_;
@@ -217,6 +230,7 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
     Rgb sum(0.0);
     for (int i = 0; i < kPartials; ++i)
         for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];
+    if (halo_) halo_->sum(&sum[0], 3);
     return sum;
 }
 

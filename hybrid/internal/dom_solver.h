@@ -18,6 +18,8 @@
 
 namespace lucent::hybrid {
 
+class SweepHalo;
+
 struct DomGrid {
     std::array<int, 3> dims{0, 0, 0};
     Vec3 edges{1.0};                    // a voxel's edge lengths
@@ -43,13 +45,17 @@ public:
     static constexpr int kMaxBands = 6;
     // bands: spherical-harmonic bands stored (1 to kMaxBands: M = bands^2 moments).
     // reflective: faces that mirror the light leaving them back in (with one
-    // iteration's delay); the others are vacuum.
-    DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective);
+    // iteration's delay); the others are vacuum, or a neighbour's when halo
+    // (owned by the caller, outliving the solver) shares the sweeps with the
+    // ranks of an MPI job: the grid is then this rank's share.
+    DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective,
+              SweepHalo* halo = nullptr);
 
     int moments() const { return moments_; }
     const Ordinates& ordinates() const { return ordinates_; }
-    // Device memory for a grid of `voxels` and the largest single buffer.
-    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands);
+    // Device memory for a grid of `voxels` (and the neighbours' radiance when
+    // shared) and the largest single buffer.
+    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared = false);
     static size_t largestBufferFor(size_t voxels, int bands);
     // The faces of the inner boundary: [voxel][3], each voxel's face to +axis
     // numbered where one side's flux is wanted and the other is air, else -1.
@@ -114,6 +120,8 @@ private:
     // The object's inner boundary (dom_sweep.cl): each voxel's face to +axis, and what it reflected.
     cl::Buffer innerFace_, mirror_[2], fresnel_;  // fresnel_: [face][N], R of each direction leaving by it
     bool mirrors_ = false;
+    SweepHalo* halo_ = nullptr;
+    cl::Buffer haloIn_;  // the radiance the neighbours sent, laid out as the boundary buffers
 };
 
 }  // namespace lucent::hybrid

@@ -52,6 +52,10 @@ inline int faceOffset(int f, int4 d) {
 // direction (one octant bit flipped, as at the box's reflecting faces) takes
 // it back in on that face (mirrorIn). The staircase of faces reflects in its
 // axes: the share is the boundary's, the direction the staircase's.
+//
+// Shared among MPI ranks (sweep_halo.h), the grid is one rank's column of
+// cells; the faces in `halo` take in what the neighbour upstream sent, the
+// radiance its own sweep left that face with (haloIn, this octant's slots).
 kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w: 0 where no flux is wanted
                       global const float4* source,      // [voxel][DOM_M]
                       global float4* flux,              // [voxel][DOM_M], accumulated
@@ -67,7 +71,9 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
                       global const float4* mirrorIn,    // [face][N]: reflected inside, the previous iteration
                       global float4* mirrorOut,         // [face][N]
                       global const float* fresnel,      // [face][N]: R of each direction leaving by the face
-                      int mirrors) {                    // any inner faces at all
+                      int mirrors,                      // any inner faces at all
+                      global const float4* haloIn,      // laid out as boundaryIn: what the neighbour ranks sent
+                      int halo) {                       // faces whose radiance comes from a neighbour rank
     const int N = 8 * DOM_K;
     const int k = kFirst + (int)get_global_id(0), j = diagonal - k;
     const int nx = dims.x, ny = dims.y, nz = dims.z;
@@ -79,9 +85,12 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
     const int base = octant * DOM_K;
     // A reflecting face returns the direction mirrored in its axis: one octant bit flipped.
     float4 lx[DOM_K];
-    for (int d = 0; d < DOM_K; ++d)
-        lx[d] = (reflective >> inX) & 1 ? boundaryIn[faceOffset(inX, dims) + (jr + ny * kr) * 8 * DOM_K + (octant ^ 1) * DOM_K + d]
-                                        : (float4)(0.0f);
+    for (int d = 0; d < DOM_K; ++d) {
+        const int xCell = faceOffset(inX, dims) + (jr + ny * kr) * 8 * DOM_K;
+        lx[d] = (halo >> inX) & 1         ? haloIn[xCell + base + d]
+                : (reflective >> inX) & 1 ? boundaryIn[xCell + (octant ^ 1) * DOM_K + d]
+                                          : (float4)(0.0f);
+    }
     for (int i = 0; i < nx; ++i) {
         const int ir = sx ? nx - 1 - i : i;
         const size_t v = (size_t)ir + (size_t)nx * ((size_t)jr + (size_t)ny * kr);
@@ -120,8 +129,14 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
             for (int m = 0; m < DOM_M; ++m) s += src[m] * ylm[n * DOM_M + m];
             float4 in[3];
             in[0] = lx[d];
-            in[1] = j > 0 ? yf[d] : ((reflective >> inY) & 1 ? boundaryIn[yCell + (octant ^ 2) * DOM_K + d] : (float4)(0.0f));
-            in[2] = k > 0 ? zf[d] : ((reflective >> inZ) & 1 ? boundaryIn[zCell + (octant ^ 4) * DOM_K + d] : (float4)(0.0f));
+            in[1] = j > 0                     ? yf[d]
+                    : (halo >> inY) & 1       ? haloIn[yCell + n]
+                    : (reflective >> inY) & 1 ? boundaryIn[yCell + (octant ^ 2) * DOM_K + d]
+                                              : (float4)(0.0f);
+            in[2] = k > 0                     ? zf[d]
+                    : (halo >> inZ) & 1       ? haloIn[zCell + n]
+                    : (reflective >> inZ) & 1 ? boundaryIn[zCell + (octant ^ 4) * DOM_K + d]
+                                              : (float4)(0.0f);
             for (int a = 0; a < 3; ++a)
                 if (faceIn[a] >= 0) in[a] += mirrorIn[(size_t)faceIn[a] * N + (octant ^ (1 << a)) * DOM_K + d];
             float4 out[3] = {(float4)(0.0f), (float4)(0.0f), (float4)(0.0f)}, average = (float4)(0.0f);

@@ -496,6 +496,12 @@ double uncollidedFluxWork(const DomGrid& grid, const std::vector<double>& source
 
 std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<double>& source, int bands,
                                       const std::array<bool, 6>& reflective) {
+    return uncollidedFlux(grid, source, bands, reflective, {0, 0, 0}, grid.dims);
+}
+
+std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<double>& source, int bands,
+                                      const std::array<bool, 6>& reflective, const std::array<int, 3>& lo,
+                                      const std::array<int, 3>& hi) {
     if (mirrorImages(reflective) == 0)
         throw std::invalid_argument("uncollidedFlux: both faces of an axis are reflective");
     const UnfoldedMedium medium(grid, reflective);
@@ -505,9 +511,10 @@ std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<dou
     const std::map<NearKey, std::vector<double>> kernelOf = nearKernels(g, sources);
     const double volume = grid.edges.x * grid.edges.y * grid.edges.z;
 
-    std::vector<glm::vec4> out(grid.count() * g.moments, glm::vec4(0.0f));
-    tbb::parallel_for(size_t(0), grid.count(), [&](size_t v) {
-        const Cell t = grid.index().cell(v);
+    const GridIndex box{{hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}};
+    std::vector<glm::vec4> out(box.count() * g.moments, glm::vec4(0.0f));
+    tbb::parallel_for(size_t(0), box.count(), [&](size_t v) {
+        const Cell c = box.cell(v), t{c[0] + lo[0], c[1] + lo[1], c[2] + lo[2]};
         std::vector<glm::dvec3> sum(g.moments, glm::dvec3(0.0));
         std::vector<double> y(g.moments);
         auto near = [&](const SourceCell& s) {

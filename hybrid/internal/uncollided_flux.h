@@ -57,5 +57,10 @@ double uncollidedFluxWork(const DomGrid& grid, const std::vector<double>& source
 // extinction are vacuum.
 std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<double>& source, int bands,
                                       const std::array<bool, 6>& reflective);
+// The same in the cells [lo, hi) only (one rank's share of the grid), [cell of
+// the box][bands^2], the box's cells in the grid's order.
+std::vector<glm::vec4> uncollidedFlux(const DomGrid& grid, const std::vector<double>& source, int bands,
+                                      const std::array<bool, 6>& reflective, const std::array<int, 3>& lo,
+                                      const std::array<int, 3>& hi);
 
 }  // namespace lucent::hybrid

@@ -32,7 +32,7 @@ bool isBenchmark(const std::string& title) {
     for (const char* name : {"lucent-bench-render", "lucent-bench-preprocess", "lucent-bench-command",
                              "lucent-bench-hybrid", "lucent-bench-peer", "lucent-bench-gallery", "lucent-bench-path",
                              "lucent-bench-placement", "lucent-bench-grazing", "lucent-bench-environment",
-                             "lucent-bench-transport", "lucent bench accuracy", "time-ci.sh"})
+                             "lucent-bench-transport", "lucent-bench-scaling", "lucent bench accuracy", "time-ci.sh"})
         if (title == name) return true;
     return false;
 }
