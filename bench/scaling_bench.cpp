@@ -57,12 +57,16 @@ struct Solve {
     int iterations = 0;
 };
 
-// One `mpirun -np ranks lucent transport`, its figures from the line it prints.
-Solve solve(const fs::path& lucent, const fs::path& dir, int ranks) {
+// One `mpirun -np ranks lucent transport`, its figures from the line it
+// prints. bound: each rank bound to a core of its own (its device's threads
+// with it); otherwise the ranks share every core.
+Solve solve(const fs::path& lucent, const fs::path& dir, int ranks, bool bound) {
     const fs::path log = dir / "log";
     const std::vector<std::string> argv{"mpirun",
                                         "--quiet",
                                         "--oversubscribe",
+                                        "--bind-to",
+                                        bound ? "core" : "none",
                                         "-np",
                                         std::to_string(ranks),
                                         lucent.string(),
@@ -86,35 +90,46 @@ Solve solve(const fs::path& lucent, const fs::path& dir, int ranks) {
     return r;
 }
 
-// Cell-direction updates per second per core, from one rank's solve.
+// Cell-direction updates per second per core, from one rank on one core.
 double measure(ResultsRecord& out, const fs::path& lucent, const fs::path& dir, int cells, int directions,
                const std::vector<int>& rankCounts, int repeats) {
     const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
     out.print(
         "`lucent transport` under `mpirun --oversubscribe -np N` on a %d^3 box, %d directions, one band, the\n"
-        "uncollided flux swept (sweep-bound). Time: the median of %d solves as rank 0 reports it; speed-up and\n"
-        "efficiency against 1 rank; per core: with min(N, %d cores) cores busy. Sent: all ranks' bytes per\n"
-        "iteration, as the solver counts them and by the formula 16 N nz (ny (px - 1) + nx (py - 1)).\n\n",
-        cells, directions, repeats, cores);
-    out.tableHeader({"ranks", "process grid", "iterations", "time (s)", "speed-up", "efficiency", "efficiency per core",
+        "uncollided flux swept (sweep-bound). Ranks up to the %d cores are bound to a core each (`--bind-to\n"
+        "core`, the OpenCL device's threads with them); one rank is also run on every core, and more ranks than\n"
+        "cores share them. Time: the median of %d solves as rank 0 reports it; speed-up against one rank on\n"
+        "one core; efficiency: the speed-up over the cores used. Sent: all ranks' bytes per iteration, as the\n"
+        "solver counts them and by the formula 16 N nz (ny (px - 1) + nx (py - 1)).\n\n",
+        cells, directions, cores, repeats);
+    out.tableHeader({"ranks", "cores", "process grid", "iterations", "time (s)", "speed-up", "efficiency",
                      "sent per iteration (MiB)", "formula (MiB)"},
-                    {true, false, true, true, true, true, true, true, true});
+                    {true, true, false, true, true, true, true, true, true});
+    struct Run {
+        int ranks;
+        bool bound;
+    };
+    std::vector<Run> runs{{1, true}};
+    if (cores > 1) runs.push_back({1, false});
+    for (int n : rankCounts)
+        if (n > 1) runs.push_back({n, n <= cores});
+    solve(lucent, dir, 1, false);  // untimed: the first run compiles the kernels into the cache
     double single = 0, rate = 0;
-    solve(lucent, dir, rankCounts.front());  // untimed: the first run compiles the kernels into the cache
-    for (int n : rankCounts) {
+    for (const Run& run : runs) {
         std::vector<double> seconds;
         Solve s;
-        for (int k = 0; k < repeats; ++k) seconds.push_back((s = solve(lucent, dir, n)).seconds);
+        for (int k = 0; k < repeats; ++k) seconds.push_back((s = solve(lucent, dir, run.ranks, run.bound)).seconds);
         const double t = median(seconds);
-        if (n == rankCounts.front()) {
-            single = t * n;
-            rate = double(cells) * cells * cells * directions * s.iterations / (t * std::min(n, cores));
+        if (single == 0) {
+            single = t;
+            rate = double(cells) * cells * cells * directions * s.iterations / t;
         }
-        const hybrid::TransportFootprint f = hybrid::transportFootprint({cells, cells, cells}, directions, 1, n, false);
-        const double speedup = single / t;
-        out.tableRow({std::to_string(n), gridName(f.processGrid), std::to_string(s.iterations), format("%.2f", t),
-                      format("%.2f", speedup), format("%.2f", speedup / n),
-                      format("%.2f", speedup / std::min(n, cores)), format("%.3f", s.mibPerIteration),
+        const int used = run.bound ? run.ranks : cores;
+        const hybrid::TransportFootprint f =
+            hybrid::transportFootprint({cells, cells, cells}, directions, 1, run.ranks, false);
+        out.tableRow({std::to_string(run.ranks), std::to_string(used), gridName(f.processGrid),
+                      std::to_string(s.iterations), format("%.2f", t), format("%.2f", single / t),
+                      format("%.2f", single / t / used), format("%.3f", s.mibPerIteration),
                       format("%.3f", f.haloBytesPerIteration / (1 << 20))});
     }
     return rate;
@@ -139,8 +154,8 @@ void project(ResultsRecord& out, double rate, int directions, int coresPerRank, 
             const hybrid::TransportFootprint f = hybrid::transportFootprint({n, n, n}, directions, 1, ranks, false);
             const auto& g = f.processGrid;
             const double share = double(n / g[0]) * (n / g[1]) * n;  // cells of the largest share, about
-            const int stages = g[0] + g[1] - 2, blocks = stages == 0 ? 1 : std::min(n, 4 * stages);
-            const double sweep = share * directions / (rate * coresPerRank) * (1.0 + double(stages) / blocks);
+            const double sweep =
+                share * directions / (rate * coresPerRank) * (1.0 + double(f.pipelineStages) / f.blocks);
             const double link = f.haloBytesPerIteration / ranks / (linkGBs * 1e9);
             const double t = sweep + link;
             out.tableRow({std::to_string(n) + "^3", std::to_string(ranks), gridName(g),

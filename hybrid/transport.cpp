@@ -161,6 +161,8 @@ TransportFootprint transportFootprint(const std::array<int, 3>& cells, int direc
     const double faces =
         double(cells[2]) * (double(cells[1]) * (part.ranks[0] - 1) + double(cells[0]) * (part.ranks[1] - 1));
     f.haloBytesPerIteration = faces * directions * 16.0;
+    f.pipelineStages = part.ranks[0] + part.ranks[1] - 2;
+    f.blocks = sweepBlocks(part);
     return f;
 }
 

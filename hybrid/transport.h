@@ -38,6 +38,9 @@ struct TransportFootprint {
     double deviceBytes = 0;            // the sweeps' buffers
     double hostBytes = 0;              // materials, source and the flux read back
     double haloBytesPerIteration = 0;  // sent between all ranks
+    // A sweep crosses px + py - 1 ranks in blocks of z: the last rank starts
+    // this many blocks' time after the first, out of this many.
+    int pipelineStages = 0, blocks = 1;
 };
 TransportFootprint transportFootprint(const std::array<int, 3>& cells, int directions, int bands, int ranks,
                                       bool whole);

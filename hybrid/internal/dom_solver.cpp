@@ -215,7 +215,8 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
                 const int kFirst = std::max(k[0], diagonal - (d[1] - 1)), kLast = std::min(k[1] - 1, diagonal);
                 sweep_.setArg(14, cl_int(diagonal));
                 sweep_.setArg(15, cl_int(kFirst));
-                queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)));
+                queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)),
+                                           cl::NDRange(1));
             }
             if (halo_) halo_->send(queue, boundary_[(swaps_ + 1) % 2], octant, b);
         }

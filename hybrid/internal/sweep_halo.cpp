@@ -14,7 +14,7 @@ namespace {
 // Blocks of z per pipeline stage: a sweep crosses px + py - 1 ranks, the last
 // starting px + py - 2 blocks after the first, so that with this many blocks
 // per stage the ranks idle about 1 / (1 + kBlocksPerStage) of a sweep.
-constexpr int kBlocksPerStage = 4;
+constexpr int kBlocksPerStage = 8;
 
 }  // namespace
 
@@ -44,11 +44,16 @@ SweepPartition partitionSweeps(const std::array<int, 3>& cells, int rank, int ra
     return p;
 }
 
+int sweepBlocks(const SweepPartition& part) {
+    const bool shared = part.ranks[0] * part.ranks[1] > 1;
+    return shared ? std::clamp(kBlocksPerStage * (part.ranks[0] + part.ranks[1] - 2), 1, part.dims()[2]) : 1;
+}
+
 SweepHalo::SweepHalo(const Peers& peers, const SweepPartition& part, int directions)
     : peers_(peers), part_(part), directions_(directions), perOctant_(directions / 8) {
     for (int f = 0; f < 6; ++f)
         if (part.neighbour[f] >= 0) mask_ |= 1 << f;
-    if (mask_ != 0) blocks_ = std::clamp(kBlocksPerStage * (part.ranks[0] + part.ranks[1] - 2), 1, part.dims()[2]);
+    blocks_ = sweepBlocks(part);
 }
 
 std::array<int, 2> SweepHalo::block(int b) const {

@@ -30,11 +30,13 @@ struct SweepPartition {
 // it. Throws Error when there are more ranks than columns of cells.
 SweepPartition partitionSweeps(const std::array<int, 3>& cells, int rank, int ranks);
 
+// How many blocks of z each octant's sweep is pipelined in on this share.
+int sweepBlocks(const SweepPartition& part);
+
 // The exchange of one rank's faces during the sweeps.
 class SweepHalo {
 public:
-    // dims: this rank's cells; directions: N. zBlocks: how many blocks each
-    // octant's sweep is pipelined in.
+    // part: this rank's share; directions: N.
     SweepHalo(const Peers& peers, const SweepPartition& part, int directions);
 
     // Faces whose in-coming radiance a neighbour sends, as a mask (bit f for face f).
