@@ -61,22 +61,33 @@ Command addTransportCommand(CLI::App& app) {
     auto problem = std::make_shared<std::string>();
     auto output = std::make_shared<std::string>();
     CLI::App* sub = app.add_subcommand(
-        "transport", "Solve a transport problem file with the discrete ordinates solver (docs/transport.md)");
+        "transport",
+        "Solve a transport problem file with the discrete ordinates solver (docs/transport.md). Under mpirun, the "
+        "ranks share the sweeps (a build with OpenMPI, libopenmpi-dev; docs/mpi.md)");
     sub->add_option("problem", *problem, "Problem file (.json)")->required();
     sub->add_option("-o,--output", *output, "Flux at the problem's points (.csv: x,y,z,flux)")->required();
     auto volume = std::make_shared<std::string>();
     sub->add_option("--vdb", *volume, "Also the flux in every cell, as an OpenVDB float grid named 'flux' (.vdb)");
     return [problem, output, volume] {
         Ranks ranks;
-        // Every rank reads the problem and checks the outputs; a failure there
-        // is agreed on, so that no rank is left waiting in the sweeps.
+        // Every rank reads the problem, checks the outputs and prepares its
+        // share; a failure there is agreed on, so that no rank is left waiting
+        // in the sweeps.
         std::optional<TransportProblem> p;
         std::string failure;
+#ifdef LUCENT_HAVE_OPENCL
+        std::optional<hybrid::TransportSolver> solver;
+#endif
         try {
             p = parseTransportProblem(*problem);
             checkOutputs(*problem, *output, *volume);
+#ifdef LUCENT_HAVE_OPENCL
+            solver.emplace(*p, &ranks);
+#endif
         } catch (const Error& e) {
             failure = e.what();
+        } catch (const std::bad_alloc&) {
+            failure = "out of memory";
         }
         const Ranks::Verdict verdict = ranks.agree(!failure.empty());
         if (verdict.anyFailed) {
@@ -86,7 +97,7 @@ Command addTransportCommand(CLI::App& app) {
 #ifdef LUCENT_HAVE_OPENCL
         hybrid::TransportResult r;
         try {
-            r = hybrid::solveTransport(*p, &ranks);
+            r = solver->solve();
         } catch (const Error& e) {
             ranks.abortJob(e.what());  // the others may be waiting for this rank's faces
         } catch (const std::bad_alloc&) {

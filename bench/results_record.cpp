@@ -163,7 +163,9 @@ std::string sourceCommit() {
     const std::string dir = LUCENT_SOURCE_DIR;
     const std::string commit = firstLineOf({"git", "-C", dir, "rev-parse", "--short=12", "HEAD"});
     if (commit.empty()) return "unknown (not built from a git checkout)";
-    const std::string changed = firstLineOf({"git", "-C", dir, "status", "--porcelain", "--untracked-files=no"});
+    // Other records written beside this one are no change to what ran.
+    const std::string changed = firstLineOf(
+        {"git", "-C", dir, "status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)docs/results"});
     return changed.empty() ? commit : commit + " + uncommitted changes";
 }
 

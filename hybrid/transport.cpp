@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "core/error.h"
@@ -166,64 +167,102 @@ TransportFootprint transportFootprint(const std::array<int, 3>& cells, int direc
     return f;
 }
 
-TransportResult solveTransport(const TransportProblem& p, const Peers* peers) {
-    const Stopwatch stopwatch;
-    const int ranks = peers ? peers->size() : 1, rank = peers ? peers->rank() : 0;
-    const SweepPartition part = partitionSweeps(p.cells, rank, ranks);
+struct TransportSolver::Impl {
+    const TransportProblem& p;
+    const Peers* peers;
+    Stopwatch stopwatch;
+    SweepPartition part;
     ClDevice device;
-    const int moments = p.bands * p.bands;
+    std::string what;
+    TransportResult r;
+    std::optional<SweepHalo> halo;
+    std::optional<DomSolver> solver;
+
+    Impl(const TransportProblem& problem, const Peers* with)
+        : p(problem), peers(with), part(partitionSweeps(p.cells, rank(), ranks())) {}
+    int ranks() const { return peers ? peers->size() : 1; }
+    int rank() const { return peers ? peers->rank() : 0; }
+    void prepare();
+    void sweep();
+};
+
+// Everything before the ranks first talk: the device, the materials, the source.
+void TransportSolver::Impl::prepare() {
     const std::array<int, 3> dims = part.dims();
     const size_t count = size_t(dims[0]) * dims[1] * dims[2];
-    const std::string what = "the " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-                             std::to_string(dims[2]) + " cells of " + p.file.string();
+    what = "the " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+           " cells of " + p.file.string();
     // The host's copies: the source and the flux read back (M float4 per cell), the materials.
-    device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks > 1),
+    device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks() > 1),
                        DomSolver::largestBufferFor(count, p.bands), what,
                        count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
     // The first-collision source of a rank's cells sees every source through
     // the whole grid: each rank holds all of it unless the uncollided flux is swept.
-    const bool wholeNeeded = ranks == 1 || p.uncollided != TransportProblem::Uncollided::Swept;
+    const bool wholeNeeded = ranks() == 1 || p.uncollided != TransportProblem::Uncollided::Swept;
     const Materials whole = wholeNeeded ? materialsIn(p, {0, 0, 0}, p.cells) : Materials{};
-    const Materials local = ranks == 1 ? Materials{} : materialsIn(p, part.lo, part.hi);
-    const Materials& mine = ranks == 1 ? whole : local;
-    TransportResult r;
+    const Materials local = ranks() == 1 ? Materials{} : materialsIn(p, part.lo, part.hi);
+    const Materials& mine = ranks() == 1 ? whole : local;
     if (wholeNeeded) decideUncollided(p, whole, r);  // swept: nothing to decide
     BoundaryFlags reflective = p.reflective;
     for (int f = 0; f < 6; ++f) reflective[f] = reflective[f] && part.neighbour[f] < 0;  // inside: a neighbour's
-    std::optional<SweepHalo> halo;
-    if (ranks > 1) halo.emplace(*peers, part, p.directions);
-    try {
-        DomSolver solver(device, mine.grid, p.directions, p.bands, reflective, halo ? &*halo : nullptr);
-        if (r.uncollidedMarched)  // the first-collision source: generation zero integrated, the sweeps carry the rest
-            solver.setUncollidedFlux(
-                device.marchQueue, uncollidedFlux(whole.grid, whole.density, p.bands, p.reflective, part.lo, part.hi));
-        else
-            solver.setSource(device.marchQueue, mine.source);
-        const DomSolver::Run run = solver.run(device.marchQueue, p.tolerance, p.maxIterations);
-        r.iterations = run.iterations;
-        r.converged = run.converged;
-        r.device = device.name();
-        r.cellFlux = gatherFlux(p, solver.totalFlux(device.marchQueue), moments, part, peers);
-        if (halo) {
-            double sent = halo->bytesSent();
-            halo->sum(&sent, 1);
-            r.haloBytesPerIteration = run.iterations > 0 ? sent / run.iterations : 0.0;
+    if (ranks() > 1) halo.emplace(*peers, part, p.directions);
+    solver.emplace(device, mine.grid, p.directions, p.bands, reflective, halo ? &*halo : nullptr);
+    if (r.uncollidedMarched)  // the first-collision source: generation zero integrated, the sweeps carry the rest
+        solver->setUncollidedFlux(device.marchQueue,
+                                  uncollidedFlux(whole.grid, whole.density, p.bands, p.reflective, part.lo, part.hi));
+    else
+        solver->setSource(device.marchQueue, mine.source);
+}
+
+// The iterations, with the ranks trading faces, and the flux gathered on rank 0.
+void TransportSolver::Impl::sweep() {
+    const DomSolver::Run run = solver->run(device.marchQueue, p.tolerance, p.maxIterations);
+    r.iterations = run.iterations;
+    r.converged = run.converged;
+    r.device = device.name();
+    r.ranks = ranks();
+    r.cellFlux = gatherFlux(p, solver->totalFlux(device.marchQueue), p.bands * p.bands, part, peers);
+    if (halo) {
+        double sent = halo->bytesSent();
+        halo->sum(&sent, 1);
+        r.haloBytesPerIteration = run.iterations > 0 ? sent / run.iterations : 0.0;
+    }
+    if (rank() == 0) {
+        const Vec3 edges = p.domain.extent() / Vec3(p.cells[0], p.cells[1], p.cells[2]);
+        for (const Vec3& x : p.points) {
+            int c[3];
+            for (int a = 0; a < 3; ++a)
+                c[a] = std::clamp(int(std::floor((x[a] - p.domain.min[a]) / edges[a])), 0, p.cells[a] - 1);
+            r.flux.push_back(r.cellFlux[GridIndex{p.cells}(c[0], c[1], c[2])]);
         }
-        r.ranks = ranks;
-        if (rank == 0)
-            for (const Vec3& x : p.points) {
-                int c[3];
-                for (int a = 0; a < 3; ++a)
-                    c[a] =
-                        std::clamp(int(std::floor((x[a] - p.domain.min[a]) / mine.grid.edges[a])), 0, p.cells[a] - 1);
-                r.flux.push_back(r.cellFlux[GridIndex{p.cells}(c[0], c[1], c[2])]);
-            }
-        r.seconds = stopwatch.seconds();
-        return r;
+    }
+    r.seconds = stopwatch.seconds();
+}
+
+TransportSolver::TransportSolver(const TransportProblem& problem, const Peers* peers)
+    : impl_(std::make_unique<Impl>(problem, peers)) {
+    try {
+        impl_->prepare();
     } catch (const cl::Error& e) {
-        throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
+        throw Error("OpenCL device '" + impl_->device.name() + "': " + e.what() + " failed for " + impl_->what + ": " +
                     clErrorText(e.err()));
     }
+}
+
+TransportSolver::~TransportSolver() = default;
+
+TransportResult TransportSolver::solve() {
+    try {
+        impl_->sweep();
+        return impl_->r;
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL device '" + impl_->device.name() + "': " + e.what() + " failed for " + impl_->what + ": " +
+                    clErrorText(e.err()));
+    }
+}
+
+TransportResult solveTransport(const TransportProblem& problem, const Peers* peers) {
+    return TransportSolver(problem, peers).solve();
 }
 
 }  // namespace lucent::hybrid

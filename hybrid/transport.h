@@ -3,6 +3,7 @@
 // file (core/transport_problem.h) instead of a scene, so that it can be checked
 // against the standard transport benchmarks. Runs on OpenCL.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,26 @@ struct TransportResult {
 
 // With peers (the ranks of an MPI job), each rank sweeps its share of the
 // cells and trades the radiance crossing its faces with its neighbours (KBA,
-// hybrid/internal/sweep_halo.h); every rank calls this, and rank 0's result
+// hybrid/internal/sweep_halo.h); every rank makes one, and rank 0's result
 // holds the flux (the others': no flux).
+class TransportSolver {
+public:
+    // Everything before the ranks talk: the device and its memory, the
+    // materials, the first-collision source. Throws Error (an Error here is
+    // safe to agree on: no rank waits for another yet).
+    TransportSolver(const TransportProblem& problem, const Peers* peers = nullptr);
+    ~TransportSolver();
+    TransportSolver(const TransportSolver&) = delete;
+    TransportSolver& operator=(const TransportSolver&) = delete;
+    // The sweeps, with the ranks trading faces, and the flux gathered on rank 0.
+    TransportResult solve();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// TransportSolver(problem, peers).solve().
 TransportResult solveTransport(const TransportProblem& problem, const Peers* peers = nullptr);
 
 // What each rank of `ranks` holds and sends for a grid of `cells` (the largest

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # lucent transport under mpirun with real ranks (docs/mpi.md): the sweeps
 # shared KBA-style give the flux of one process within 1e-6 relative on 1, 2, 3
-# and 4 ranks (process grids 1x1, 2x1, 3x1 and 2x2), with the uncollided flux
+# and 4 ranks (process grids 1x1, 1x2, 1x3 and 2x2), with the uncollided flux
 # marched and swept; a problem no rank can read exits 1 with one error line and
-# no output; a rank killed mid-sweep ends the run with no output, never a hang.
+# no output, and so does a problem with fewer columns of cells than ranks; a
+# rank killed mid-sweep ends the run with no output, never a hang.
 #   mpi_transport_test.sh LUCENT SOURCE_DIR
 set -euo pipefail
 lucent=$(realpath "$1")
@@ -40,6 +41,16 @@ if "${mpi[@]}" -np 3 "$lucent" transport missing.json -o missing.csv 2> log-miss
 fi
 [ "$(grep -c 'lucent: error:' log-missing)" = 1 ] || fail "expected one error line, got: $(cat log-missing)"
 [ ! -e missing.csv ] || fail "a failed run wrote its output"
+
+# More ranks than columns of cells: refused before the sweeps, one line.
+cat > thin.json << 'JSON'
+{"domain": {"min": [0, 0, 0], "max": [1, 1, 4], "cells": [1, 1, 4]},
+ "regions": [{"min": [0, 0, 0], "max": [1, 1, 4], "sigma_t": 1, "sigma_s": 0.5, "source": 1}],
+ "points": [[0.5, 0.5, 2]], "solver": {"directions": 8}}
+JSON
+if "${mpi[@]}" -np 2 "$lucent" transport thin.json -o thin.csv 2> log-thin; then fail "2 ranks on 1 column succeeded"; fi
+[ "$(grep -c 'lucent: error:.*columns of cells' log-thin)" = 1 ] || fail "expected one error line, got: $(cat log-thin)"
+[ ! -e thin.csv ] || fail "a refused run wrote its output"
 
 # Rank 1 killed while the ranks sweep (the uncollided flux swept: sweeps from
 # the start): mpirun ends the job, rank 0 waiting for its faces writes nothing.
