@@ -61,6 +61,13 @@ Ranks::Verdict Ranks::agree(bool failedHere) const {
     return v;
 }
 
+void Ranks::leaveIfAnyFailed(const std::string& failure) const {
+    const Verdict verdict = agree(!failure.empty());
+    if (!verdict.anyFailed) return;
+    if (verdict.reportHere) throw Error(failure);
+    throw QuietExit{0};
+}
+
 void Ranks::sumIntoRankZero(Image& image) const {
 #ifdef LUCENT_HAVE_MPI
     if (!joined_) return;

@@ -30,12 +30,11 @@ public:
     void receive(int from, float* values, size_t count) const override;
     void sum(double* values, int count) const override;
 
-    // Collective: whether any rank failed, and whether this rank is the one to say why.
-    struct Verdict {
-        bool anyFailed = false;
-        bool reportHere = false;
-    };
-    Verdict agree(bool failedHere) const;
+    // Collective: where any rank failed (failure: this rank's error, empty if
+    // none), every rank leaves: the one to say why throws it as an Error, the
+    // others QuietExit{0}, so that the reporting rank's status ends the job (a
+    // second non-zero exit could make mpirun kill that rank before its line is out).
+    void leaveIfAnyFailed(const std::string& failure) const;
 
     // Collective: every rank's image summed into rank 0's (the others' are left as they are).
     void sumIntoRankZero(Image& image) const;
@@ -46,6 +45,13 @@ public:
     [[noreturn]] void abortJob(const std::string& why) const;
 
 private:
+    // Collective: whether any rank failed, and whether this rank is the one to say why.
+    struct Verdict {
+        bool anyFailed = false;
+        bool reportHere = false;
+    };
+    Verdict agree(bool failedHere) const;
+
     int rank_ = 0, size_ = 1;
     bool joined_ = false;
 };

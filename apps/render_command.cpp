@@ -131,13 +131,7 @@ Command addRenderCommand(CLI::App& app) {
             failure = "out of memory";
         }
         // Every rank reaches this point, failed or not: none is left waiting.
-        const Ranks::Verdict verdict = ranks.agree(!failure.empty());
-        if (verdict.anyFailed) {
-            if (verdict.reportHere) throw Error(failure);
-            // Exit 0 and let the reporting rank's status end the job: a second
-            // non-zero exit could make mpirun kill that rank before its line is out.
-            throw QuietExit{0};
-        }
+        ranks.leaveIfAnyFailed(failure);
         if (frame->split) ranks.sumIntoRankZero(frame->image);
         if (ranks.rank() == 0) writeFrame(*o, *frame);
     };

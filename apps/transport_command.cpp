@@ -89,11 +89,7 @@ Command addTransportCommand(CLI::App& app) {
         } catch (const std::bad_alloc&) {
             failure = "out of memory";
         }
-        const Ranks::Verdict verdict = ranks.agree(!failure.empty());
-        if (verdict.anyFailed) {
-            if (verdict.reportHere) throw Error(failure);
-            throw QuietExit{0};  // the reporting rank's status ends the job
-        }
+        ranks.leaveIfAnyFailed(failure);
 #ifdef LUCENT_HAVE_OPENCL
         hybrid::TransportResult r;
         try {

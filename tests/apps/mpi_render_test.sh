@@ -7,6 +7,7 @@
 set -euo pipefail
 lucent=$(realpath "$1")
 source_dir=$2
+here=$(dirname "$(realpath "$0")")
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 cp "$source_dir/models/sphere.json" "$source_dir/models/sphere.obj" "$scratch/"
@@ -15,6 +16,7 @@ cd "$scratch"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpi=(mpirun --quiet --oversubscribe)
 fail() { echo "FAIL: $*"; exit 1; }
+source "$here/mpi_kill_rank.sh"
 
 for method in path reference; do
   args=(render sphere.json --method "$method" --width 40 --height 36 --seed 3)
@@ -33,21 +35,6 @@ if "${mpi[@]}" -np 3 "$lucent" render missing.json -o missing.pfm 2> log-missing
 [ ! -e missing.pfm ] || fail "a failed run wrote its output"
 
 # Rank 1 killed while the ranks trace: mpirun ends the job, nothing is written.
-"${mpi[@]}" -np 2 "$lucent" render sphere.json --method path --samples 100000 --width 64 --height 64 \
-  -o killed.pfm 2> log-killed &
-job=$!
-for _ in $(seq 100); do
-  ranks=$(pgrep -f "killed.pfm" | grep -v "^$job\$" | grep -v "^$$\$" || true)
-  [ "$(echo "$ranks" | grep -c .)" -ge 2 ] && break
-  sleep 0.1
-done
-victim=$(echo "$ranks" | tail -1)
-[ -n "$victim" ] || fail "the ranks never started: $(cat log-killed)"
-sleep 0.5
-kill -9 "$victim"
-status=0
-timeout 60 tail --pid="$job" -f /dev/null || fail "mpirun still runs 60 s after a rank was killed"
-wait "$job" || status=$?
-[ "$status" != 0 ] || fail "a run with a killed rank exited 0"
-[ ! -e killed.pfm ] || fail "a run with a killed rank wrote its output"
+kill_a_rank killed.pfm 0.5 "${mpi[@]}" -np 2 "$lucent" render sphere.json --method path --samples 100000 \
+  --width 64 --height 64 -o killed.pfm
 echo "mpi render: images identical on 1, 2 and 4 ranks; failures end every rank"

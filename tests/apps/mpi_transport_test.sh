@@ -9,12 +9,14 @@
 set -euo pipefail
 lucent=$(realpath "$1")
 source_dir=$2
+here=$(dirname "$(realpath "$0")")
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 cd "$scratch"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpi=(mpirun --quiet --oversubscribe)
 fail() { echo "FAIL: $*"; exit 1; }
+source "$here/mpi_kill_rank.sh"
 
 # Kobayashi's problem 1 with 50% scattering (three reflective faces) on a
 # coarser grid: marched, and swept with two bands and anisotropic scattering.
@@ -55,20 +57,5 @@ if "${mpi[@]}" -np 2 "$lucent" transport thin.json -o thin.csv 2> log-thin; then
 # Rank 1 killed while the ranks sweep (the uncollided flux swept: sweeps from
 # the start): mpirun ends the job, rank 0 waiting for its faces writes nothing.
 sed -e 's/"cells": \[50, 50, 50\]/"cells": [40, 40, 40]/' -e 's/"marched"/"swept"/' "$k1" > long.json
-"${mpi[@]}" -np 2 "$lucent" transport long.json -o killed.csv 2> log-killed &
-job=$!
-for _ in $(seq 100); do
-  ranks=$(pgrep -f "killed.csv" | grep -v "^$job\$" | grep -v "^$$\$" || true)
-  [ "$(echo "$ranks" | grep -c .)" -ge 2 ] && break
-  sleep 0.1
-done
-victim=$(echo "$ranks" | tail -1)
-[ -n "$victim" ] || fail "the ranks never started: $(cat log-killed)"
-sleep 2
-kill -9 "$victim"
-status=0
-timeout 60 tail --pid="$job" -f /dev/null || fail "mpirun still runs 60 s after a rank was killed"
-wait "$job" || status=$?
-[ "$status" != 0 ] || fail "a run with a killed rank exited 0"
-[ ! -e killed.csv ] || fail "a run with a killed rank wrote its output"
+kill_a_rank killed.csv 2 "${mpi[@]}" -np 2 "$lucent" transport long.json -o killed.csv
 echo "mpi transport: flux within 1e-6 on 1-4 ranks; failures end every rank"
