@@ -6,8 +6,11 @@
 // the scattering cases of problems 2 and 3 have no truth here and are run and
 // recorded only.
 //
+// --directions and --cell change the problem files' direction sets and cells,
+// to see which of the two an error follows (docs/transport.md).
+//
 //   build/bin/lucent-bench-transport [--problems 1,2,3] [--cases absorber,scatter] [--details] [--repeats 3]
-//                                    [--record docs/results/kobayashi.md]
+//                                    [--directions 24,48,...] [--cell CM] [--record docs/results/kobayashi.md]
 #include <CLI/CLI.hpp>
 
 #include <sys/resource.h>
@@ -54,11 +57,25 @@ std::vector<double> truths(int n, const std::string& which, const TransportProbl
     return t;
 }
 
+// The problem files' settings, or the ones the command line asks for instead.
+struct Overrides {
+    std::vector<int> directions;  // each in turn; empty: the file's
+    double cell = 0;              // cm along every axis; 0: the file's
+};
+
+TransportProblem withOverrides(TransportProblem p, int directions, double cell) {
+    if (directions > 0) p.directions = directions;
+    if (cell > 0)
+        for (int a = 0; a < 3; ++a) p.cells[a] = std::max(1, int(std::lround(p.domain.extent()[a] / cell)));
+    return p;
+}
+
 void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::vector<std::string>& cases,
-               bool details, int repeats) {
+               bool details, int repeats, const Overrides& overrides) {
     out.print(
         "`lucent transport` on the problem files models/transport/kobayashi-N-CASE.json (2 cm cells, the\n"
-        "benchmark's), against problem 1's published fluxes (exact for the absorber, Monte Carlo with\n"
+        "benchmark's, and their direction sets, unless the command line says otherwise), against problem 1's published "
+        "fluxes (exact for the absorber, Monte Carlo with\n"
         "scattering) and the uncollided flux integrated without cells for the absorbers of problems 2 and 3;\n"
         "the errors are the solver's cell values against the point values at the detectors. Time: the\n"
         "median of the repeated solves, uncollided flux included; memory: the process's peak resident\n"
@@ -68,46 +85,49 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
                     {false, false, true, true, false, true, true, true, true, true, true, false});
     std::vector<std::string> lines;
     std::string device;
+    const std::vector<int> directionSets = overrides.directions.empty() ? std::vector<int>{0} : overrides.directions;
     for (int n : problems)
-        for (const std::string& which : cases) {
-            const TransportProblem p =
-                parseTransportProblem(std::string(LUCENT_SOURCE_DIR) + "/models/transport/kobayashi-" +
-                                      std::to_string(n) + "-" + which + ".json");
-            const hybrid::TransportResult r = hybrid::solveTransport(p);
-            std::vector<double> seconds{r.seconds};
-            for (int k = 1; k < repeats; ++k) seconds.push_back(hybrid::solveTransport(p).seconds);
-            if (device.empty()) out.addDevice("opencl: " + (device = r.device));
-            const std::vector<double> truth = truths(n, which, p);
-            double worst = 0.0, sum = 0.0;
-            size_t at = 0;
-            for (size_t i = 0; i < truth.size(); ++i) {
-                const double e = r.flux[i] / truth[i] - 1.0;
-                sum += std::abs(e);
-                if (std::abs(e) > std::abs(worst)) worst = e, at = i;
-                if (details) {
-                    const Vec3& x = p.points[i];
-                    char row[160];
-                    std::snprintf(row, sizeof row, "| %d | %s | (%g, %g, %g) | %.5g | %.5g | %+.2f%% |\n", n,
-                                  which.c_str(), x.x, x.y, x.z, r.flux[i], truth[i], 100.0 * e);
-                    lines.push_back(row);
+        for (const std::string& which : cases)
+            for (int directions : directionSets) {
+                const TransportProblem p = withOverrides(
+                    parseTransportProblem(std::string(LUCENT_SOURCE_DIR) + "/models/transport/kobayashi-" +
+                                          std::to_string(n) + "-" + which + ".json"),
+                    directions, overrides.cell);
+                const hybrid::TransportResult r = hybrid::solveTransport(p);
+                std::vector<double> seconds{r.seconds};
+                for (int k = 1; k < repeats; ++k) seconds.push_back(hybrid::solveTransport(p).seconds);
+                if (device.empty()) out.addDevice("opencl: " + (device = r.device));
+                const std::vector<double> truth = truths(n, which, p);
+                double worst = 0.0, sum = 0.0;
+                size_t at = 0;
+                for (size_t i = 0; i < truth.size(); ++i) {
+                    const double e = r.flux[i] / truth[i] - 1.0;
+                    sum += std::abs(e);
+                    if (std::abs(e) > std::abs(worst)) worst = e, at = i;
+                    if (details) {
+                        const Vec3& x = p.points[i];
+                        char row[160];
+                        std::snprintf(row, sizeof row, "| %d | %s | %d | (%g, %g, %g) | %.5g | %.5g | %+.2f%% |\n", n,
+                                      which.c_str(), p.directions, x.x, x.y, x.z, r.flux[i], truth[i], 100.0 * e);
+                        lines.push_back(row);
+                    }
                 }
+                const Vec3& w = p.points[at];
+                char where[64];
+                std::snprintf(where, sizeof where, "(%g, %g, %g)", w.x, w.y, w.z);
+                out.tableRow(
+                    {std::to_string(n), which,
+                     std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" + std::to_string(p.cells[2]),
+                     std::to_string(p.directions), r.uncollidedMarched ? "marched" : "swept",
+                     std::to_string(r.iterations), format("%.1f", median(seconds)), format("%.0f", peakResidentMiB()),
+                     std::to_string(p.points.size()), truth.empty() ? "(no truth)" : format("%+.1f%%", 100.0 * worst),
+                     truth.empty() ? "" : format("%.1f%%", 100.0 * sum / double(truth.size())),
+                     truth.empty() ? "" : where});
             }
-            const Vec3& w = p.points[at];
-            char where[64];
-            std::snprintf(where, sizeof where, "(%g, %g, %g)", w.x, w.y, w.z);
-            out.tableRow(
-                {std::to_string(n), which,
-                 std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" + std::to_string(p.cells[2]),
-                 std::to_string(p.directions), r.uncollidedMarched ? "marched" : "swept", std::to_string(r.iterations),
-                 format("%.1f", median(seconds)), format("%.0f", peakResidentMiB()), std::to_string(p.points.size()),
-                 truth.empty() ? "(no truth)" : format("%+.1f%%", 100.0 * worst),
-                 truth.empty() ? "" : format("%.1f%%", 100.0 * sum / double(truth.size())),
-                 truth.empty() ? "" : where});
-        }
     if (details && !lines.empty()) {
         out.print("\nEvery detector with a truth:\n\n");
-        out.tableHeader({"problem", "case", "detector (cm)", "flux", "truth", "error"},
-                        {false, false, false, true, true, true});
+        out.tableHeader({"problem", "case", "directions", "detector (cm)", "flux", "truth", "error"},
+                        {false, false, true, false, true, true, true});
         for (const std::string& line : lines) out.print("%s", line.c_str());
     }
 }
@@ -125,12 +145,18 @@ int main(int argc, char** argv) {
     app.add_flag("--details", details, "Also every detector's flux, truth and error");
     int repeats = 3;
     app.add_option("--repeats", repeats, "Solves timed per problem (their median)")->check(CLI::Range(1, 100));
+    Overrides overrides;
+    app.add_option("--directions", overrides.directions, "Direction sets run in turn instead of the files'")
+        ->delimiter(',')
+        ->check(CLI::IsMember({24, 48, 80, 120, 168}));
+    app.add_option("--cell", overrides.cell, "Cells of about this many cm instead of the files' 2 cm")
+        ->check(CLI::Range(1.0, 50.0));
     app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        kobayashi(out, problems, cases, details, repeats);
+        kobayashi(out, problems, cases, details, repeats, overrides);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-transport: error: %s\n", e.what());
