@@ -41,8 +41,9 @@ public:
 
     // Faces whose in-coming radiance a neighbour sends, as a mask (bit f for face f).
     int mask() const { return mask_; }
-    // The sweep-ordered z range of block b: [first, last).
+    // How many blocks of z each octant's sweep is pipelined in.
     int blocks() const { return blocks_; }
+    // The sweep-ordered z range of block b: [first, last).
     std::array<int, 2> block(int b) const;
     // Before block b of an octant's sweep: what the upstream neighbours' faces
     // sent, into `in` (laid out as the boundary buffers, DomSolver::faceOffset).
