@@ -84,12 +84,6 @@ Error errorOver(const Image& test, const Image& truth, const std::vector<bool>& 
     return {reference > 0.0 ? std::sqrt(squared / reference) : 0.0, n > 0 ? sum / (3.0 * n) : 0.0};
 }
 
-std::string formatted(const char* format, double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, format, v);
-    return text;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -159,6 +159,12 @@ void ResultsRecord::write(const std::filesystem::path& file) const {
     std::fprintf(stderr, "%s: recorded in %s\n", name_.c_str(), file.c_str());
 }
 
+std::string formatted(const char* format, double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, format, v);
+    return text;
+}
+
 std::string sourceCommit() {
     const std::string dir = LUCENT_SOURCE_DIR;
     const std::string commit = firstLineOf({"git", "-C", dir, "rev-parse", "--short=12", "HEAD"});

@@ -46,6 +46,9 @@ private:
     std::vector<std::string> devices_;
 };
 
+// One number in a printf format, for a table's cell.
+std::string formatted(const char* format, double v);
+
 // The commit of the source tree the benchmark was built from (git describe of
 // LUCENT_SOURCE_DIR), "+ uncommitted changes" when the tree differs from it.
 std::string sourceCommit();

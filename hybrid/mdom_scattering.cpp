@@ -26,10 +26,19 @@ MdomScattering::MdomScattering() : impl_(std::make_unique<Impl>()) {}
 MdomScattering::~MdomScattering() = default;
 std::string MdomScattering::deviceName() const { return impl_->device.name(); }
 
-size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, int bands) {
+namespace {
+DomPool poolOf(double share) { return DomPool{share}; }
+}  // namespace
+
+size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, int bands, double devicePool) {
     // The solver's buffers, and the direct pass's: two extinctions, two results, the blockers.
     const size_t voxels = GridIndex{dims}.count();
-    return DomSolver::bytesFor(dims, directions, bands) + voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
+    return DomSolver::bytesFor(dims, directions, bands, false, poolOf(devicePool)) +
+           voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
+}
+
+size_t MdomScattering::poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool) {
+    return DomSolver::hostBytesFor(dims, bands, poolOf(devicePool));
 }
 
 ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
@@ -104,6 +113,8 @@ bool MdomProgress::iterate() {
     p.stats.converged = run.converged;
     p.stats.ratio = run.ratio;
     p.stats.sweepSeconds += stopwatch.seconds();
+    p.stats.bytesToDevice = p.solver->traffic().bytesUp;
+    p.stats.bytesFromDevice = p.solver->traffic().bytesDown;
     return !p.stats.converged && p.stats.iterations < p.settings.maxIterations;
 }
 
@@ -331,9 +342,15 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     const int moments = s.bands * s.bands;
     // The host keeps the source it uploads and the moments it reads back (M
     // float4 each per voxel) and the materials (4 float4): 3.78 GB peak measured
-    // at 128^3, M = 16, against the device's 2.35 GB.
-    device.checkMemory(bytesFor(shape.dims, s.directions, s.bands), DomSolver::largestBufferFor(voxels, s.bands), what,
-                       voxels * size_t(2 * moments + 4) * sizeof(glm::vec4));
+    // at 128^3, M = 16, against the device's 2.35 GB. With a pool, it also
+    // holds the blocks.
+    const DomPool pool = poolOf(s.devicePool);
+    device.checkMemory(
+        bytesFor(shape.dims, s.directions, s.bands, s.devicePool),
+        DomSolver::largestBufferFor(shape.dims, s.bands, pool), what,
+        voxels * size_t(2 * moments + 4) * sizeof(glm::vec4) + DomSolver::hostBytesFor(shape.dims, s.bands, pool));
+    stats.poolSlots = DomSolver::slotsFor(shape.dims, pool);
+    stats.poolBlocks = s.devicePool > 0.0 ? BlockTiling(shape.dims, pool.edge).blocks() : 1;
     const Voxelisation vox = voxelise(object, s.resolution);
     stats.voxeliseSeconds = stopwatch.seconds();
     stopwatch.restart();
@@ -359,7 +376,8 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
         solution.peaks = std::move(direct.peaks);
         solution.refraction = vox.viewRefraction();
         solution.ior = vox.ior;
-        progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{});
+        progress->solver =
+            std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{}, nullptr, pool);
         progress->solver->setSource(device.marchQueue, direct.source);
         return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));
     } catch (const cl::Error& e) {

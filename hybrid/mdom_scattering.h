@@ -27,6 +27,11 @@ struct MdomSettings {
     int bands = 4;            // spherical-harmonic bands of the stored source (M = bands^2 moments)
     double tolerance = 1e-2;  // stop when the generations still to come are below this share of the light
     int maxIterations = 200;  // scattering iterations at most
+    // The share of the sweeps' volumes the device holds at once (thesis 5.2.2):
+    // above 0 they live in host memory in blocks of 32^3 voxels, streamed
+    // through a device pool of this share of them (one block at least); 0 keeps
+    // the whole grid on the device.
+    double devicePool = 0.0;
 };
 
 // The solution for one object. Per voxel: the moments T_lm = int L Y_lm of
@@ -74,7 +79,9 @@ struct MdomStats {
     double voxeliseSeconds = 0, directSeconds = 0, sweepSeconds = 0;
     int iterations = 0;
     bool converged = false;
-    Rgb ratio{0.0};  // of the last two generations' light
+    Rgb ratio{0.0};                                 // of the last two generations' light
+    int poolSlots = 1, poolBlocks = 1;              // blocks the device holds at once, of all
+    double bytesToDevice = 0, bytesFromDevice = 0;  // the pool's copies
 };
 
 class MdomScattering;
@@ -107,7 +114,9 @@ public:
 
     std::string deviceName() const;
     // Device memory a solve on a grid of these dimensions takes.
-    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands);
+    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, double devicePool = 0.0);
+    // Host memory the blocks of a device pool take (0 without one).
+    static size_t poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool);
 
     // afterIteration(i, solution): the solution with the generations so far
     // (thesis 5.3.3: each iteration's image is available); called only when

@@ -194,7 +194,7 @@ void TransportSolver::Impl::prepare() {
            " cells of " + p.file.string();
     // The host's copies: the source and the flux read back (M float4 per cell), the materials.
     device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks() > 1),
-                       DomSolver::largestBufferFor(count, p.bands), what,
+                       DomSolver::largestBufferFor(dims, p.bands), what,
                        count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
     // The first-collision source of a rank's cells sees every source through
     // the whole grid: each rank holds all of it unless the uncollided flux is swept.

@@ -16,11 +16,18 @@ std::vector<OptionSpec> MdomMethod::options() {
     out.push_back(OptionSpec::integerOf("moments", 16, {4, 9, 16, 25, 36},
                                         "spherical-harmonic moments of the scattering source stored per voxel; "
                                         "fewer fit larger grids, more follow larger |g|"));
+    out.push_back(OptionSpec::real("device-pool", 0, 0, 100,
+                                   "percent of the sweeps' volumes the device holds at once, the rest streamed from "
+                                   "host memory in blocks of 32^3 (thesis 5.2.2); 0 keeps the whole grid on the "
+                                   "device. For grids larger than the device; the same image, slower"));
     return out;
 }
 
 MdomMethod::MdomMethod(const MethodOptions& options)
-    : GridMethod(options), directions_(options.integer("directions")), moments_(options.integer("moments")) {}
+    : GridMethod(options),
+      directions_(options.integer("directions")),
+      moments_(options.integer("moments")),
+      devicePool_(options.real("device-pool") / 100.0) {}
 
 std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const MethodSettings& settings) const {
     std::vector<std::string> out = GridMethod::limitations(scene, settings);
@@ -50,6 +57,7 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
     ms.resolution = resolution();
     ms.directions = directions_;
     ms.bands = int(std::lround(std::sqrt(double(moments_))));
+    ms.devicePool = devicePool_;
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {
         hybrid::MdomStats stats;
@@ -62,6 +70,10 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
                      object.desc().name.c_str(), d[0], d[1], d[2], ms.directions, moments_, stats.iterations,
                      stats.converged ? "" : " (not converged)", stats.directSeconds, stats.sweepSeconds,
                      stats.voxeliseSeconds);
+        if (stats.poolBlocks > 1)
+            std::fprintf(
+                stderr, "lucent: mdom: the device held %d of %d blocks at a time: %.0f MB copied to it, %.0f MB back\n",
+                stats.poolSlots, stats.poolBlocks, stats.bytesToDevice / 1e6, stats.bytesFromDevice / 1e6);
     }
     return grids;
 }

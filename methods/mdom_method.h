@@ -21,6 +21,7 @@ private:
     std::vector<ScatteringGrid> solveGrids(const LoadedScene& scene, const MethodSettings& settings,
                                            std::string& device) override;
     int directions_, moments_;
+    double devicePool_;  // share of the sweeps' volumes on the device; 0: all, unblocked
 };
 
 }  // namespace lucent

@@ -35,7 +35,7 @@ size_t DomSolver::faceOffset(int face, const std::array<int, 3>& d, int directio
 std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
     const GridIndex index = grid.index();
     const auto& d = grid.dims;
-    std::vector<cl_int> faces(3 * index.count(), -1);
+    std::vector<cl_int> faces(6 * index.count(), -1);
     auto wanted = [&](size_t v) { return grid.extinction[v].a != 0.0f; };
     auto air = [&](size_t v) { return glm::vec3(grid.extinction[v]) == glm::vec3(0.0f); };
     *count = 0;
@@ -47,25 +47,59 @@ std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
                 for (int a = 0; a < 3; ++a) {
                     if (c[a] + 1 >= d[a]) continue;
                     const size_t u = index(i + (a == 0), j + (a == 1), k + (a == 2));
-                    if ((wanted(v) && air(u)) || (air(v) && wanted(u))) faces[3 * v + a] = (*count)++;
+                    if ((wanted(v) && air(u)) || (air(v) && wanted(u))) {
+                        faces[6 * v + 2 * a + 1] = *count;  // v's face to +axis is u's to -axis
+                        faces[6 * u + 2 * a] = (*count)++;
+                    }
                 }
             }
     return faces;
 }
 
-size_t DomSolver::largestBufferFor(size_t voxels, int bands) { return voxels * bands * bands * sizeof(glm::vec4); }
+std::vector<size_t> DomSolver::volumeBytes(int bands, bool mirrors) {
+    const size_t moments = size_t(bands) * bands * sizeof(glm::vec4);
+    return {sizeof(glm::vec4), sizeof(glm::vec4), sizeof(glm::vec4), mirrors ? 6 * sizeof(cl_int) : 0,
+            moments,           moments,           moments,           moments};
+}
 
-size_t DomSolver::bytesFor(const std::array<int, 3>& d, int directions, int bands, bool shared) {
+int DomSolver::slotsFor(const std::array<int, 3>& dims, const DomPool& pool) {
+    if (!(pool.share > 0.0)) return 1;
+    const int blocks = BlockTiling(dims, pool.edge).blocks();
+    return std::clamp(int(std::ceil(pool.share * blocks - 1e-9)), 1, blocks);
+}
+
+size_t DomSolver::largestBufferFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
+    const std::array<int, 3> d = pool.share > 0.0 ? BlockTiling(dims, pool.edge).maxDims() : dims;
+    return size_t(d[0]) * d[1] * d[2] * bands * bands * sizeof(glm::vec4);
+}
+
+size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
+    // Holding every block, the device's copies are the only ones.
+    if (!(pool.share > 0.0) || slotsFor(dims, pool) == BlockTiling(dims, pool.edge).blocks()) return 0;
+    size_t perVoxel = 0;
+    for (size_t b : volumeBytes(bands, false)) perVoxel += b;
+    return GridIndex{dims}.count() * perVoxel;
+}
+
+size_t DomSolver::bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared,
+                           const DomPool& pool) {
+    const std::array<int, 3> d = pool.share > 0.0 ? BlockTiling(dims, pool.edge).maxDims() : dims;
+    const int slots = slotsFor(dims, pool);
+    // Per slot: source, flux, last flux, total and three float4 materials; two
+    // face buffers; two boundaries (three shared or pooled).
     const size_t voxels = size_t(d[0]) * d[1] * d[2];
-    // source, flux, last flux, total; three float4 materials; two face buffers; two boundaries (three shared)
-    return 4 * largestBufferFor(voxels, bands) + voxels * 3 * sizeof(glm::vec4) +
+    return slots * (4 * largestBufferFor(d, bands) + voxels * 3 * sizeof(glm::vec4)) +
            (size_t(d[0]) * (d[1] + d[2])) * directions / 8 * sizeof(glm::vec4) +
-           (shared ? 3 : 2) * faceOffset(6, d, directions) * sizeof(glm::vec4);
+           (shared || pool.share > 0.0 ? 3 : 2) * faceOffset(6, d, directions) * sizeof(glm::vec4);
 }
 
 DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands,
-                     const BoundaryFlags& reflective, SweepHalo* halo)
-    : grid_(grid), ordinates_(ordinatesFor(directions)), moments_(bands * bands), halo_(halo) {
+                     const BoundaryFlags& reflective, SweepHalo* halo, const DomPool& pool)
+    : grid_(grid),
+      ordinates_(ordinatesFor(directions)),
+      moments_(bands * bands),
+      tiling_(grid.dims, pool.share > 0.0 ? pool.edge : std::max({grid.dims[0], grid.dims[1], grid.dims[2], 1})),
+      halo_(halo) {
     if (bands < 1 || bands > kMaxBands)
         throw Error("discrete ordinates: 1 to " + std::to_string(kMaxBands) + " bands of moments, not " +
                     std::to_string(bands));
@@ -74,6 +108,9 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     if (moments_ > n)
         throw Error("discrete ordinates: " + std::to_string(moments_) +
                     " moments need at least as many directions, not " + std::to_string(n));
+    for (int f = 0; f < 6; ++f) reflectiveMask_ |= reflective[f] ? 1 << f : 0;
+    if (tiling_.blocks() > 1 && (reflectiveMask_ != 0 || halo))
+        throw Error("internal: a device pool with reflective faces or MPI ranks");
     program_ = device.buildSource("#define DOM_K " + std::to_string(k) + "\n#define DOM_BANDS " +
                                       std::to_string(bands) + "\n#define DOM_M " + std::to_string(moments_) +
                                       "\n#line 1\n" + hybridKernel("dom_sweep.cl"),
@@ -81,7 +118,7 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     sweep_ = cl::Kernel(program_, "dom_sweep");
     scatter_ = cl::Kernel(program_, "dom_scatter");
     power_ = cl::Kernel(program_, "dom_power");
-    for (int f = 0; f < 6; ++f) reflectiveMask_ |= reflective[f] ? 1 << f : 0;
+    add_ = cl::Kernel(program_, "dom_add_scaled");
 
     // The directions' moments, weights and voxel crossings (edges may differ per axis).
     std::vector<float> ylm(size_t(n) * moments_), weights(n), crossing(size_t(k) * 27);
@@ -101,28 +138,23 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
             }
     }
     const cl::Context& cx = device.context;
-    const size_t voxels = grid.count(), values = voxels * moments_;
-    extinction_ = constBuffer(cx, grid.extinction);
-    scattering_ = constBuffer(cx, grid.scattering);
-    phase_ = constBuffer(cx, grid.phase);
     ylm_ = constBuffer(cx, ylm);
     weights_ = constBuffer(cx, weights);
     crossing_ = constBuffer(cx, crossing);
-    source_ = zeroBuffer(cx, values * sizeof(glm::vec4));
-    flux_ = zeroBuffer(cx, values * sizeof(glm::vec4));
-    lastFlux_ = zeroBuffer(cx, values * sizeof(glm::vec4));
-    total_ = zeroBuffer(cx, values * sizeof(glm::vec4));
-    const auto& dm = grid.dims;
+    const std::array<int, 3> dm = tiling_.maxDims();
     yFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[2] * k * sizeof(glm::vec4));
     zFace_ = zeroBuffer(cx, size_t(dm[0]) * dm[1] * k * sizeof(glm::vec4));
     for (cl::Buffer& b : boundary_) b = zeroBuffer(cx, faceOffset(6, dm, n) * sizeof(glm::vec4));
-    haloIn_ = zeroBuffer(cx, (halo ? faceOffset(6, dm, n) : 1) * sizeof(glm::vec4));
+    haloIn_ = zeroBuffer(cx, (halo || tiling_.blocks() > 1 ? faceOffset(6, dm, n) : 1) * sizeof(glm::vec4));
     partial_ = zeroBuffer(cx, kPartials * sizeof(glm::vec4));
+    leaving_.resize(size_t(tiling_.blocks()) * 3);
+    for (int o = 0; o < 8; ++o) order_[o] = tiling_.wavefronts(o);
+
     // The inner boundary: per face, Fresnel's reflectance of each direction
     // leaving the medium by it, at its angle to the boundary's normal there (a
     // direction the staircase lets out but the boundary would not: kept inside).
     int faces = 0;
-    std::vector<cl_int> innerFace = grid.ior != 1.0 ? innerFaces(grid, &faces) : std::vector<cl_int>{-1};
+    const std::vector<cl_int> innerFace = grid.ior != 1.0 ? innerFaces(grid, &faces) : std::vector<cl_int>{};
     mirrors_ = faces > 0;
     const size_t mirrorBytes = size_t(faces) * n * sizeof(glm::vec4);
     if (mirrors_)
@@ -134,7 +166,7 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
         const GridIndex index = grid.index();
         for (size_t v = 0; v < grid.count(); ++v)
             for (int a = 0; a < 3; ++a) {
-                const int f = innerFace[3 * v + a];
+                const int f = innerFace[6 * v + 2 * a + 1];
                 if (f < 0) continue;
                 const std::array<int, 3> c = index.cell(v);
                 const size_t u = index(c[0] + (a == 0), c[1] + (a == 1), c[2] + (a == 2));
@@ -146,101 +178,192 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
                 }
             }
     }
-    innerFace_ = constBuffer(cx, innerFace);
     fresnel_ = constBuffer(cx, fresnel);
     for (cl::Buffer& b : mirror_) b = zeroBuffer(cx, std::max<size_t>(1, size_t(faces) * n) * sizeof(glm::vec4));
 
-    sweep_.setArg(0, extinction_);
-    sweep_.setArg(1, source_);
+    // The volumes: with a pool holding every block, all are resident from the
+    // start (zeros) and what is set goes straight to the device.
+    pool_ = std::make_unique<BlockPool>(cx, tiling_, volumeBytes(bands, mirrors_), slotsFor(grid.dims, pool));
+    const cl::CommandQueue& queue = device.marchQueue;
+    if (pool_->holdsAll())
+        for (int b = 0; b < tiling_.blocks(); ++b) pool_->acquire(queue, b, 0, ~0u);
+    setVolume(queue, kExtinction, grid.extinction.data(), sizeof(glm::vec4));
+    setVolume(queue, kScattering, grid.scattering.data(), sizeof(glm::vec4));
+    setVolume(queue, kPhase, grid.phase.data(), sizeof(glm::vec4));
+    if (mirrors_) setVolume(queue, kInnerFace, innerFace.data(), 6 * sizeof(cl_int));
+
     sweep_.setArg(3, yFace_);
     sweep_.setArg(4, zFace_);
     sweep_.setArg(7, ylm_);
     sweep_.setArg(8, weights_);
     sweep_.setArg(9, crossing_);
-    sweep_.setArg(10, int4Of(dm));
     sweep_.setArg(11, float(std::max({grid.edges.x, grid.edges.y, grid.edges.z})));
     sweep_.setArg(13, cl_int(reflectiveMask_));
-    sweep_.setArg(16, innerFace_);
     sweep_.setArg(19, fresnel_);
     sweep_.setArg(20, cl_int(mirrors_));
     sweep_.setArg(21, haloIn_);
-    sweep_.setArg(22, cl_int(halo ? halo->mask() : 0));
-    scatter_.setArg(2, source_);
-    scatter_.setArg(3, scattering_);
-    scatter_.setArg(4, phase_);
+}
+
+DomSolver::~DomSolver() = default;
+
+const BlockPool::Traffic& DomSolver::traffic() const { return pool_->traffic(); }
+
+void DomSolver::setVolume(const cl::CommandQueue& queue, Volume volume, const void* values, size_t bytes) {
+    if (tiling_.blocks() == 1) {
+        pool_->set(queue, 0, volume, values);
+        return;
+    }
+    std::vector<char> block(tiling_.voxels(0) * bytes);
+    for (int b = 0; b < tiling_.blocks(); ++b) {
+        block.resize(tiling_.voxels(b) * bytes);
+        tiling_.toBlock(b, values, block.data(), bytes);
+        pool_->set(queue, b, volume, block.data());
+    }
 }
 
 void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source) {
     if (source.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates source of wrong size");
-    queue.enqueueWriteBuffer(source_, CL_TRUE, 0, source.size() * sizeof(glm::vec4), source.data());
+    setVolume(queue, kSource, source.data(), moments_ * sizeof(glm::vec4));
 }
 
-void DomSolver::scatterGeneration(cl::CommandQueue& queue) {
-    scatter_.setArg(0, flux_);
-    scatter_.setArg(1, total_);
-    queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(grid_.count()));
-    std::swap(flux_, lastFlux_);
-    queue.enqueueFillBuffer(flux_, 0.0f, 0, grid_.count() * moments_ * sizeof(glm::vec4));
+Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
+    Rgb sum(0.0);
+    std::vector<glm::vec4> partial(kPartials);
+    const unsigned need = 1u << kFlux | 1u << kTotal | 1u << kScattering | 1u << kPhase;
+    for (int b = 0; b < tiling_.blocks(); ++b) {
+        pool_->newWavefront();
+        const int slot = pool_->acquire(queue, b, need, 1u << kSource | 1u << kLastFlux);
+        const size_t voxels = tiling_.voxels(b);
+        cl::Buffer& flux = pool_->buffer(slot, kFlux);
+        power_.setArg(0, flux);
+        power_.setArg(1, partial_);
+        power_.setArg(2, cl_int(voxels));
+        queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
+        queue.enqueueReadBuffer(partial_, CL_TRUE, 0, kPartials * sizeof(glm::vec4), partial.data());
+        for (const glm::vec4& p : partial)
+            for (int c = 0; c < 3; ++c) sum[c] += p[c];
+        scatter_.setArg(0, flux);
+        scatter_.setArg(1, pool_->buffer(slot, kTotal));
+        scatter_.setArg(2, pool_->buffer(slot, kSource));
+        scatter_.setArg(3, pool_->buffer(slot, kScattering));
+        scatter_.setArg(4, pool_->buffer(slot, kPhase));
+        queue.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(voxels));
+        queue.enqueueFillBuffer(pool_->buffer(slot, kLastFlux), 0.0f, 0, voxels * moments_ * sizeof(glm::vec4));
+        pool_->written(slot, 1u << kTotal | 1u << kSource | 1u << kLastFlux);
+    }
+    // The flux just scattered is the last flux; the cleared one takes the next generation.
+    pool_->swapVolumes(kFlux, kLastFlux);
+    if (halo_) halo_->sum(&sum[0], 3);
+    return sum;
 }
 
 void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
     if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
-    queue.enqueueWriteBuffer(flux_, CL_TRUE, 0, flux.size() * sizeof(glm::vec4), flux.data());
-    scatterGeneration(queue);
-    Rgb power(0.0);  // generation zero's, as iterate() measures each generation
-    for (size_t v = 0; v < grid_.count(); ++v)
-        for (int c = 0; c < 3; ++c) power[c] += flux[v * moments_][c];
-    if (halo_) halo_->sum(&power[0], 3);
+    setVolume(queue, kFlux, flux.data(), moments_ * sizeof(glm::vec4));
+    const Rgb power = scatterGeneration(queue);  // generation zero's, as iterate() measures each generation
     total_power_ += power;
     previous_power_ = power;
     queue.finish();
 }
 
+void DomSolver::receiveFaces(cl::CommandQueue& queue, int octant, int b) {
+    const std::array<int, 3> d = tiling_.dims(b), c = tiling_.coords(b);
+    const int k = ordinates_.perOctant, n = 8 * k;
+    for (int a = 0; a < 3; ++a) {
+        const bool down = (octant >> a) & 1;  // the sweep runs towards -axis: it enters by the + face
+        std::array<int, 3> up = c;
+        up[a] += down ? 1 : -1;
+        const int from = tiling_.at(up);
+        if (from < 0) continue;
+        const std::vector<glm::vec4>& faces = leaving_[size_t(from) * 3 + a];
+        const size_t cells = faces.size() / k;
+        const size_t first = faceOffset(2 * a + down, d, n) / n;  // the face's first cell
+        queue.enqueueWriteBufferRect(haloIn_, CL_TRUE, {octant * k * sizeof(glm::vec4), first, 0}, {0, 0, 0},
+                                     {k * sizeof(glm::vec4), cells, 1}, n * sizeof(glm::vec4), 0, k * sizeof(glm::vec4),
+                                     0, faces.data());
+    }
+}
+
+void DomSolver::keepFaces(cl::CommandQueue& queue, int octant, int b) {
+    const std::array<int, 3> d = tiling_.dims(b), c = tiling_.coords(b);
+    const int k = ordinates_.perOctant, n = 8 * k;
+    const size_t cellsOf[3] = {size_t(d[1]) * d[2], size_t(d[0]) * d[2], size_t(d[0]) * d[1]};
+    for (int a = 0; a < 3; ++a) {
+        const bool down = (octant >> a) & 1;  // it leaves by the - face
+        std::array<int, 3> next = c;
+        next[a] += down ? -1 : 1;
+        if (tiling_.at(next) < 0) continue;
+        std::vector<glm::vec4>& faces = leaving_[size_t(b) * 3 + a];
+        faces.resize(cellsOf[a] * k);
+        const size_t first = faceOffset(2 * a + !down, d, n) / n;
+        queue.enqueueReadBufferRect(boundary_[(swaps_ + 1) % 2], CL_TRUE, {octant * k * sizeof(glm::vec4), first, 0},
+                                    {0, 0, 0}, {k * sizeof(glm::vec4), cellsOf[a], 1}, n * sizeof(glm::vec4), 0,
+                                    k * sizeof(glm::vec4), 0, faces.data());
+    }
+}
+
+void DomSolver::sweepBlock(cl::CommandQueue& queue, int octant, int b) {
+    const unsigned need = 1u << kExtinction | 1u << kSource | 1u << kFlux | (mirrors_ ? 1u << kInnerFace : 0u);
+    const int slot = pool_->acquire(queue, b, need);
+    sweep_.setArg(0, pool_->buffer(slot, kExtinction));
+    sweep_.setArg(1, pool_->buffer(slot, kSource));
+    sweep_.setArg(2, pool_->buffer(slot, kFlux));
+    sweep_.setArg(16, pool_->buffer(slot, kInnerFace));
+    const std::array<int, 3> d = tiling_.dims(b), c = tiling_.coords(b);
+    sweep_.setArg(10, int4Of(d));
+    // The faces that take in what a neighbouring block or rank upstream left.
+    int mask = halo_ ? halo_->mask() : 0;
+    for (int a = 0; a < 3; ++a) {
+        mask |= c[a] > 0 ? 1 << 2 * a : 0;
+        mask |= c[a] + 1 < tiling_.counts()[a] ? 1 << (2 * a + 1) : 0;
+    }
+    sweep_.setArg(22, cl_int(mask));
+    if (tiling_.blocks() > 1) receiveFaces(queue, octant, b);
+    // Shared with other ranks, the sweep goes in blocks of z (KBA): each
+    // block's diagonals j + k once the upstream ranks' faces are in.
+    const int stages = halo_ ? halo_->blocks() : 1;
+    for (int z = 0; z < stages; ++z) {
+        const std::array<int, 2> kz = halo_ ? halo_->block(z) : std::array<int, 2>{0, d[2]};
+        if (halo_) halo_->receive(queue, haloIn_, octant, z);
+        for (int diagonal = kz[0]; diagonal <= d[1] - 1 + kz[1] - 1; ++diagonal) {
+            const int kFirst = std::max(kz[0], diagonal - (d[1] - 1)), kLast = std::min(kz[1] - 1, diagonal);
+            sweep_.setArg(14, cl_int(diagonal));
+            sweep_.setArg(15, cl_int(kFirst));
+            queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)), cl::NDRange(1));
+        }
+        if (halo_) halo_->send(queue, boundary_[(swaps_ + 1) % 2], octant, z);
+    }
+    pool_->written(slot, 1u << kFlux);
+    if (tiling_.blocks() > 1) keepFaces(queue, octant, b);
+}
+
 Rgb DomSolver::iterate(cl::CommandQueue& queue) {
-    const auto& d = grid_.dims;
-    sweep_.setArg(2, flux_);
     sweep_.setArg(5, boundary_[swaps_ % 2]);
     sweep_.setArg(6, boundary_[(swaps_ + 1) % 2]);
     sweep_.setArg(17, mirror_[swaps_ % 2]);
     sweep_.setArg(18, mirror_[(swaps_ + 1) % 2]);
     for (int octant = 0; octant < 8; ++octant) {
         sweep_.setArg(12, cl_int(octant));
-        // Shared with other ranks, the sweep goes in blocks of z (KBA): each
-        // block's diagonals j + k once the upstream ranks' faces are in.
-        const int blocks = halo_ ? halo_->blocks() : 1;
-        for (int b = 0; b < blocks; ++b) {
-            const std::array<int, 2> k = halo_ ? halo_->block(b) : std::array<int, 2>{0, d[2]};
-            if (halo_) halo_->receive(queue, haloIn_, octant, b);
-            for (int diagonal = k[0]; diagonal <= d[1] - 1 + k[1] - 1; ++diagonal) {
-                const int kFirst = std::max(k[0], diagonal - (d[1] - 1)), kLast = std::min(k[1] - 1, diagonal);
-                sweep_.setArg(14, cl_int(diagonal));
-                sweep_.setArg(15, cl_int(kFirst));
-                queue.enqueueNDRangeKernel(sweep_, cl::NullRange, cl::NDRange(size_t(kLast - kFirst + 1)),
-                                           cl::NDRange(1));
-            }
-            if (halo_) halo_->send(queue, boundary_[(swaps_ + 1) % 2], octant, b);
+        // The blocks wavefront by wavefront (thesis 5.3.4: the loading order is known before the sweep).
+        for (const std::vector<int>& wavefront : order_[octant]) {
+            pool_->newWavefront();
+            for (const int b : wavefront) sweepBlock(queue, octant, b);
         }
     }
     ++swaps_;
-    power_.setArg(0, flux_);
-    power_.setArg(1, partial_);
-    power_.setArg(2, cl_int(grid_.count()));
-    queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
-    std::vector<glm::vec4> partial = read(queue, partial_, kPartials);
-    scatterGeneration(queue);
-    Rgb sum(0.0);
-    for (int i = 0; i < kPartials; ++i)
-        for (int c = 0; c < 3; ++c) sum[c] += partial[i][c];
-    if (halo_) halo_->sum(&sum[0], 3);
-    return sum;
+    return scatterGeneration(queue);
 }
 
 void DomSolver::addTail(cl::CommandQueue& queue, const Rgb& factor) {
-    cl::Kernel add(program_, "dom_add_scaled");
-    add.setArg(0, total_);
-    add.setArg(1, lastFlux_);
-    add.setArg(2, cl_float4{{float(factor.r), float(factor.g), float(factor.b), 0.0f}});
-    queue.enqueueNDRangeKernel(add, cl::NullRange, cl::NDRange(grid_.count()));
+    add_.setArg(2, cl_float4{{float(factor.r), float(factor.g), float(factor.b), 0.0f}});
+    for (int b = 0; b < tiling_.blocks(); ++b) {
+        pool_->newWavefront();
+        const int slot = pool_->acquire(queue, b, 1u << kTotal | 1u << kLastFlux);
+        add_.setArg(0, pool_->buffer(slot, kTotal));
+        add_.setArg(1, pool_->buffer(slot, kLastFlux));
+        queue.enqueueNDRangeKernel(add_, cl::NullRange, cl::NDRange(tiling_.voxels(b)));
+        pool_->written(slot, 1u << kTotal);
+    }
 }
 
 bool DomSolver::step(cl::CommandQueue& queue, double tolerance) {
@@ -288,16 +411,24 @@ DomSolver::Run DomSolver::run(cl::CommandQueue& queue, double tolerance, int max
 }
 
 std::vector<glm::vec4> DomSolver::totalFlux(cl::CommandQueue& queue) {
-    return read(queue, total_, grid_.count() * moments_);
+    std::vector<glm::vec4> out(grid_.count() * moments_);
+    if (tiling_.blocks() == 1) {
+        pool_->get(queue, 0, kTotal, out.data());
+        return out;
+    }
+    std::vector<glm::vec4> block;
+    for (int b = 0; b < tiling_.blocks(); ++b) {
+        block.resize(tiling_.voxels(b) * moments_);
+        pool_->get(queue, b, kTotal, block.data());
+        tiling_.fromBlock(b, block.data(), out.data(), moments_ * sizeof(glm::vec4));
+    }
+    return out;
 }
 
 std::vector<glm::vec4> DomSolver::boundaryRadiance(cl::CommandQueue& queue) {
-    return read(queue, boundary_[swaps_ % 2], faceOffset(6, grid_.dims, 8 * ordinates_.perOctant));
-}
-
-std::vector<glm::vec4> DomSolver::read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count) {
-    std::vector<glm::vec4> out(count);
-    queue.enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(glm::vec4), out.data());
+    if (tiling_.blocks() > 1) throw Error("internal: the box's boundary radiance of a pooled solver");
+    std::vector<glm::vec4> out(faceOffset(6, grid_.dims, 8 * ordinates_.perOctant));
+    queue.enqueueReadBuffer(boundary_[swaps_ % 2], CL_TRUE, 0, out.size() * sizeof(glm::vec4), out.data());
     return out;
 }
 

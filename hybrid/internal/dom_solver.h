@@ -7,12 +7,14 @@
 // `lucent transport`; knows nothing of meshes or lights.
 #include <array>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/grid_index.h"
 #include "core/math.h"
+#include "hybrid/internal/block_pool.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/ordinates.h"
 
@@ -40,6 +42,14 @@ struct DomGrid {
 // Faces of the box, in the order of the boundary flags: x-, x+, y-, y+, z-, z+.
 using BoundaryFlags = std::array<bool, 6>;
 
+// Where the solver's volumes live (block_pool.h). share 0: the whole grid on
+// the device, as one block. Above 0: in blocks of edge^3 voxels in host
+// memory, of which the device holds this share at once (one block at least).
+struct DomPool {
+    double share = 0.0;
+    int edge = 32;
+};
+
 class DomSolver {
 public:
     static constexpr int kMaxBands = 6;
@@ -48,18 +58,28 @@ public:
     // iteration's delay); the others are vacuum, or a neighbour's when halo
     // (owned by the caller, outliving the solver) shares the sweeps with the
     // ranks of an MPI job: the grid is then this rank's share.
+    // A pool (share > 0) takes neither reflective faces nor a halo.
     DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective,
-              SweepHalo* halo = nullptr);
+              SweepHalo* halo = nullptr, const DomPool& pool = {});
+    ~DomSolver();
 
     int moments() const { return moments_; }
     const Ordinates& ordinates() const { return ordinates_; }
     // Device memory for a grid of `voxels` (and the neighbours' radiance when
-    // shared) and the largest single buffer.
-    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared = false);
-    static size_t largestBufferFor(size_t voxels, int bands);
-    // The faces of the inner boundary: [voxel][3], each voxel's face to +axis
-    // numbered where one side's flux is wanted and the other is air, else -1.
+    // shared) and the largest single buffer; with a pool, the host's copies of
+    // the blocks (hostBytesFor; 0 without).
+    static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared = false,
+                           const DomPool& pool = {});
+    static size_t largestBufferFor(const std::array<int, 3>& dims, int bands, const DomPool& pool = {});
+    static size_t hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool);
+    // Blocks in the device's pool (1 without one).
+    static int slotsFor(const std::array<int, 3>& dims, const DomPool& pool);
+    // The faces of the inner boundary: [voxel][6], each voxel's faces to -x,
+    // +x, -y, +y, -z and +z, numbered where one side's flux is wanted and the
+    // other is air, else -1.
     static std::vector<cl_int> innerFaces(const DomGrid& grid, int* count);
+    // What the pool copied (zero without one).
+    const BlockPool::Traffic& traffic() const;
 
     // The first generation's radiance source, [voxel][M] moments (rgb) per unit length.
     void setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source);
@@ -101,10 +121,21 @@ public:
     static size_t faceOffset(int face, const std::array<int, 3>& dims, int directions);
 
 private:
-    // The generation in the flux buffer joins the total and scatters into the
-    // next source; it becomes the last flux, and the flux buffer is cleared.
-    void scatterGeneration(cl::CommandQueue& queue);
-    std::vector<glm::vec4> read(cl::CommandQueue& queue, cl::Buffer& buffer, size_t count);
+    // The volumes each block keeps.
+    enum Volume { kExtinction, kScattering, kPhase, kInnerFace, kSource, kFlux, kLastFlux, kTotal };
+    static std::vector<size_t> volumeBytes(int bands, bool mirrors);
+    // The grid's values of a volume (grid order), block by block into the pool.
+    void setVolume(const cl::CommandQueue& queue, Volume volume, const void* values, size_t bytes);
+    // One octant's sweep of block b.
+    void sweepBlock(cl::CommandQueue& queue, int octant, int b);
+    // The radiance the blocks upstream left by the faces block b enters by,
+    // into haloIn_; and what block b leaves by its faces towards blocks downstream.
+    void receiveFaces(cl::CommandQueue& queue, int octant, int b);
+    void keepFaces(cl::CommandQueue& queue, int octant, int b);
+    // The generation in the flux volume joins the total and scatters into the
+    // next source; it becomes the last flux, and the flux is cleared. Returns
+    // the generation's summed zero moments (over the ranks when shared).
+    Rgb scatterGeneration(cl::CommandQueue& queue);
 
     DomGrid grid_;
     Ordinates ordinates_;
@@ -114,11 +145,15 @@ private:
     Run run_;
     Rgb total_power_{0.0}, previous_power_{0.0};
     cl::Program program_;
-    cl::Kernel sweep_, scatter_, power_;
-    cl::Buffer extinction_, scattering_, phase_, source_, flux_, lastFlux_, total_, yFace_, zFace_, boundary_[2], ylm_,
-        weights_, crossing_, partial_;
-    // The object's inner boundary (dom_sweep.cl): each voxel's face to +axis, and what it reflected.
-    cl::Buffer innerFace_, mirror_[2], fresnel_;  // fresnel_: [face][N], R of each direction leaving by it
+    cl::Kernel sweep_, scatter_, power_, add_;
+    BlockTiling tiling_;
+    std::unique_ptr<BlockPool> pool_;
+    std::array<std::vector<std::vector<int>>, 8> order_;  // per octant, the block wavefronts
+    // Per block and axis, the radiance it left by its downstream face in this octant ([cell][K]).
+    std::vector<std::vector<glm::vec4>> leaving_;
+    cl::Buffer yFace_, zFace_, boundary_[2], ylm_, weights_, crossing_, partial_;
+    // The object's inner boundary (dom_sweep.cl): what each face reflected.
+    cl::Buffer mirror_[2], fresnel_;  // fresnel_: [face][N], R of each direction leaving by it
     bool mirrors_ = false;
     SweepHalo* halo_ = nullptr;
     cl::Buffer haloIn_;  // the radiance the neighbours sent, laid out as the boundary buffers

@@ -53,9 +53,9 @@ inline int faceOffset(int f, int4 d) {
 // it back in on that face (mirrorIn). The staircase of faces reflects in its
 // axes: the share is the boundary's, the direction the staircase's.
 //
-// Shared among MPI ranks (sweep_halo.h), the grid is one rank's column of
-// cells; the faces in `halo` take in what the neighbour upstream sent, the
-// radiance its own sweep left that face with (haloIn, this octant's slots).
+// The grid swept may be one block of a larger one (block_pool.h) or one rank's
+// column of cells (sweep_halo.h): the faces in `halo` take in what the block
+// or rank upstream left that face with (haloIn, this octant's slots).
 kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w: 0 where no flux is wanted
                       global const float4* source,      // [voxel][DOM_M]
                       global float4* flux,              // [voxel][DOM_M], accumulated
@@ -67,7 +67,7 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
                       constant float* weights,          // [N]
                       constant float* crossing,         // [DOM_K][27]: share[9], tube[9], length[9] (In * 3 + Out)
                       int4 dims, float maxEdge, int octant, int reflective, int diagonal, int kFirst,
-                      global const int* innerFace,      // [voxel][3]: the face to +axis, its index, or -1
+                      global const int* innerFace,      // [voxel][6]: the faces to -x, +x, -y, +y, -z, +z: index, or -1
                       global const float4* mirrorIn,    // [face][N]: reflected inside, the previous iteration
                       global float4* mirrorOut,         // [face][N]
                       global const float* fresnel,      // [face][N]: R of each direction leaving by the face
@@ -106,12 +106,9 @@ kernel void dom_sweep(global const float4* extinction,  // sigma_t* per voxel; w
         // The inner faces this voxel enters by and leaves through, per axis (-1: none).
         int faceIn[3] = {-1, -1, -1}, faceOut[3] = {-1, -1, -1};
         if (mirrors && active) {
-            const int c[3] = {ir, jr, kr}, flip[3] = {sx, sy, sz};
-            const size_t stride[3] = {1, (size_t)nx, (size_t)nx * ny};
+            const int flip[3] = {sx, sy, sz};
             for (int a = 0; a < 3; ++a) {
-                // The face to +axis belongs to this voxel; the one to -axis to the voxel below.
-                const int up = innerFace[v * 3 + a];
-                const int down = c[a] > 0 ? innerFace[(v - stride[a]) * 3 + a] : -1;
+                const int down = innerFace[v * 6 + 2 * a], up = innerFace[v * 6 + 2 * a + 1];
                 faceIn[a] = flip[a] ? up : down;
                 faceOut[a] = flip[a] ? down : up;
             }

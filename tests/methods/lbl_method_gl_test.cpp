@@ -23,13 +23,15 @@ struct Renders {
     Image ss, lbl, path;  // lbl: the method under test
 };
 
-Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::string& method = "lbl", double g = 0.0) {
+Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::string& method = "lbl", double g = 0.0,
+                     double ior = 1.0, const std::map<std::string, double>& extra = {}) {
     SceneDesc scene;
     scene.file = "sphere.json";
     scene.camera = test::squareCamera(Vec3(0, 0, 5), Vec3(0), 30, 32);
     scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(40.0))};
     scene.objects = {test::simpleObject(test::modelsDir() / "sphere.obj", sigmaT, albedo)};
     scene.objects[0].medium.g = g;
+    scene.objects[0].medium.ior = ior;
     LoadedScene loaded = loadScene(scene, false);
     PreprocessSettings pre = qualityPreset("draft");
     attachSamples(loaded, {preprocessObject(loaded.objects[0], pre)});
@@ -43,8 +45,10 @@ Renders renderSphere(double sigmaT, double albedo, int pathSamples, const std::s
     };
     Renders r;
     r.ss = run("ss", {});
-    r.lbl = run(method, method == "mdom" ? std::map<std::string, double>{{"grid", 40}, {"directions", 24}}
-                                         : std::map<std::string, double>{{"grid", 40}});
+    std::map<std::string, double> options = extra;
+    options["grid"] = 40;
+    if (method == "mdom") options["directions"] = 24;
+    r.lbl = run(method, options);
     if (pathSamples > 0) r.path = run("path", {{"samples", pathSamples}});
     return r;
 }
@@ -63,6 +67,24 @@ TEST(MdomMethod, WithinTheGoalOfThePathTracerAndFarCloserThanSingleScattering) {
     std::printf("mdom %.4f ss %.4f\n", mdom, ss);
     EXPECT_LE(mdom, 0.10);
     EXPECT_LT(mdom, 0.25 * ss) << "ss " << ss;
+}
+
+TEST(MdomMethod, AnImageStreamedThroughADevicePoolIsTheWholeGridsImage) {
+    // A 40^3 grid is 8 blocks of at most 32^3: 100% of them holds all, 5% one
+    // at a time. At ior 1.4 the sweeps reflect on the object's faces, also
+    // where those lie on a block's border.
+    const Image whole = renderSphere(2.0, 0.8, 0, "mdom", 0.5, 1.4).lbl;
+    double largest = 0.0;
+    for (const auto& p : whole.pixels) largest = std::max(largest, double(glm::length(glm::vec3(p))));
+    ASSERT_GT(largest, 0.0);
+    for (double pool : {100.0, 5.0}) {
+        const Image pooled = renderSphere(2.0, 0.8, 0, "mdom", 0.5, 1.4, {{"device-pool", pool}}).lbl;
+        ASSERT_EQ(pooled.pixels.size(), whole.pixels.size());
+        double worst = 0.0;
+        for (size_t i = 0; i < whole.pixels.size(); ++i)
+            worst = std::max(worst, double(glm::length(glm::vec3(pooled.pixels[i] - whole.pixels[i]))));
+        EXPECT_LE(worst, 1e-5 * largest) << "a pool of " << pool << "%";
+    }
 }
 
 TEST(MdomMethod, WarnsWhereItMissesTheGoal) {
