@@ -409,7 +409,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(8, 2048));
     rf->add_option("--repeats", refractionRepeats, "ss renders timed per row")->check(CLI::Range(1, 100));
     std::string recordFile;
-    for (CLI::App* sub : {sp, ac, md, rf})
+    for (CLI::App* sub : {sp, ac, md, rf, pl})
         sub->add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
