@@ -9,7 +9,7 @@
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z]
 //   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N] [--frame-size N]
-//   build/bin/lucent-bench-hybrid pool     [--grids 128,256] [--pools 0,100,25,5] [--directions 24] [--moments 16]
+//   build/bin/lucent-bench-hybrid pool     [--grids 128,256] [--pools 0,25,5] [--directions 24] [--moments 9,16]
 //                                          [--iterations 2] [--repeats N]
 //   every subcommand also takes [--record docs/results/hybrid-SUBCOMMAND.md]
 //
@@ -282,65 +282,68 @@ void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vec
 // blocks of 32^3 through pools of a share of them; the time ratios are
 // measured in this run, and the flux moments compared to the reference's.
 void mdomPool(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& pools, int directions,
-              int moments, int iterations, int repeats) {
+              const std::vector<int>& momentCounts, int iterations, int repeats) {
     hybrid::MdomScattering solver;
     out.addDevice("OpenCL: " + solver.deviceName());
     out.print(
-        "mdom on the bundled sphere, albedo 0.90, g 0.80, one point light, %d directions, %d moments, %d "
-        "iterations; the median of %d repeats. Copies: per iteration, to the device and back.\n\n",
-        directions, moments, iterations, repeats);
+        "mdom on the bundled sphere, albedo 0.90, g 0.80, one point light, %d directions, %d iterations; the "
+        "median of %d repeats. Copies: per iteration, to the device and back. A pool that would hold every "
+        "block is the whole grid.\n\n",
+        directions, iterations, repeats);
     out.tableHeader(
-        {"grid", "pool", "blocks held", "sweeps per iteration (s)", "against the whole grid", "copied up (GB)",
-         "copied back (GB)", "device memory (MiB)", "host blocks (MiB)", "largest difference"},
-        {true, false, false, true, true, true, true, true, true, true});
+        {"grid", "moments", "pool", "blocks held", "sweeps per iteration (s)", "against the whole grid",
+         "copied up (GB)", "copied back (GB)", "device memory (MiB)", "host blocks (MiB)", "largest difference"},
+        {true, true, false, false, true, true, true, true, true, true, true});
     const SceneDesc scene = sceneOf("sphere", 0.9, 0.8);
     std::vector<std::string> warnings;
     const VolumeObject object(scene.objects[0], warnings);
-    for (int grid : grids) {
-        hybrid::MdomSettings s;
-        s.resolution = grid;
-        s.directions = directions;
-        s.bands = int(std::lround(std::sqrt(double(moments))));
-        s.maxIterations = iterations;
-        s.tolerance = 0.0;  // exactly `iterations`
-        const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);
-        std::vector<glm::vec4> reference;
-        double referenceTime = 0.0;
-        for (double pool : pools) {
-            s.devicePool = pool / 100.0;
-            std::vector<double> times;
-            hybrid::MdomStats stats;
-            std::vector<glm::vec4> flux;
-            try {
-                for (int r = 0; r < repeats; ++r) {
-                    flux = solver.solve(object, scene.lights, s, &stats).moments;
-                    times.push_back(stats.sweepSeconds / iterations);
+    for (int grid : grids)
+        for (int moments : momentCounts) {
+            hybrid::MdomSettings s;
+            s.resolution = grid;
+            s.directions = directions;
+            s.bands = int(std::lround(std::sqrt(double(moments))));
+            s.maxIterations = iterations;
+            s.tolerance = 0.0;  // exactly `iterations`
+            const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);
+            std::vector<glm::vec4> reference;  // the whole grid's flux
+            double referenceTime = 0.0;
+            for (double pool : pools) {
+                s.devicePool = pool / 100.0;
+                const std::string name = pool > 0.0 ? formatted("%g%%", pool) : "whole grid";
+                std::vector<double> times;
+                hybrid::MdomStats stats;
+                std::vector<glm::vec4> flux;
+                try {
+                    for (int r = 0; r < repeats; ++r) {
+                        flux = solver.solve(object, scene.lights, s, &stats).moments;
+                        times.push_back(stats.sweepSeconds / iterations);
+                    }
+                } catch (const Error& e) {
+                    out.print("| %d | %d | %s | | refused: %s | | | | | | |\n", grid, moments, name.c_str(), e.what());
+                    continue;
                 }
-            } catch (const Error& e) {
-                out.print("| %d | %s | | refused: %s | | | | | | |\n", grid,
-                          pool > 0.0 ? (formatted("%g%%", pool)).c_str() : "whole grid", e.what());
-                continue;
-            }
-            const double t = median(times);
-            double difference = 0.0, largest = 0.0;
-            if (pool == 0.0) {
-                reference = std::move(flux);
-                referenceTime = t;
-            } else if (!reference.empty()) {
-                for (size_t i = 0; i < flux.size(); ++i) {
-                    largest = std::max(largest, double(std::abs(reference[i].g)));
-                    difference = std::max(difference, double(std::abs(flux[i].g - reference[i].g)));
+                const double t = median(times);
+                double difference = 0.0, largest = 0.0;
+                if (pool == 0.0) {
+                    reference = std::move(flux);
+                    referenceTime = t;
+                } else if (!reference.empty()) {
+                    for (size_t i = 0; i < flux.size(); ++i) {
+                        largest = std::max(largest, double(std::abs(reference[i].g)));
+                        difference = std::max(difference, double(std::abs(flux[i].g - reference[i].g)));
+                    }
                 }
+                const size_t device = hybrid::MdomScattering::bytesFor(shape.dims, directions, s.bands, s.devicePool);
+                const size_t host = hybrid::MdomScattering::poolHostBytes(shape.dims, s.bands, s.devicePool);
+                out.print("| %d | %d | %s | %d of %d%s | %.2f | %s | %.2f | %.2f | %zu | %zu | %s |\n", grid, moments,
+                          name.c_str(), stats.poolSlots, stats.poolBlocks, stats.spilled ? ", spilled to a file" : "",
+                          t, referenceTime > 0.0 ? formatted("%.2f", t / referenceTime).c_str() : "",
+                          stats.bytesToDevice / iterations / 1e9, stats.bytesFromDevice / iterations / 1e9,
+                          device >> 20, host >> 20,
+                          largest > 0.0 ? formatted("%.1e", difference / largest).c_str() : "");
             }
-            const size_t device = hybrid::MdomScattering::bytesFor(shape.dims, directions, s.bands, s.devicePool);
-            const size_t host = hybrid::MdomScattering::poolHostBytes(shape.dims, s.bands, s.devicePool);
-            out.print("| %d | %s | %d of %d | %.2f | %s | %.2f | %.2f | %zu | %zu | %s |\n", grid,
-                      pool > 0.0 ? formatted("%g%%", pool).c_str() : "whole grid", stats.poolSlots, stats.poolBlocks, t,
-                      referenceTime > 0.0 ? formatted("%.2f", t / referenceTime).c_str() : "",
-                      stats.bytesToDevice / iterations / 1e9, stats.bytesFromDevice / iterations / 1e9, device >> 20,
-                      host >> 20, largest > 0.0 ? formatted("%.1e", difference / largest).c_str() : "");
         }
-    }
 }
 
 }  // namespace
@@ -390,15 +393,16 @@ int main(int argc, char** argv) {
     std::vector<double> iors{1.33, 1.5};
     int refractionRepeats = 3, refractionSpp = 1024, refractionSize = 64, refractionFrame = 256;
     std::vector<int> poolGrids{128};
-    std::vector<double> pools{0, 100, 25, 5};
-    int poolDirections = 24, poolMoments = 16, poolIterations = 2, poolRepeats = 1;
+    std::vector<double> pools{0, 25, 5};
+    std::vector<int> poolMoments{16};
+    int poolDirections = 24, poolIterations = 2, poolRepeats = 1;
     auto* pl = app.add_subcommand("pool", "mdom's volumes streamed through a device pool: overhead and copies");
     pl->add_option("--grids", poolGrids)->delimiter(',');
     pl->add_option("--pools", pools, "Percent of the blocks the device holds; 0: the whole grid, unblocked")
         ->delimiter(',')
         ->check(CLI::Range(0.0, 100.0));
     pl->add_option("--directions", poolDirections)->check(CLI::IsMember({24, 48, 80, 120, 168}));
-    pl->add_option("--moments", poolMoments)->check(CLI::IsMember({4, 9, 16, 25, 36}));
+    pl->add_option("--moments", poolMoments)->delimiter(',')->check(CLI::IsMember({4, 9, 16, 25, 36}));
     pl->add_option("--iterations", poolIterations)->check(CLI::Range(1, 100));
     pl->add_option("--repeats", poolRepeats)->check(CLI::Range(1, 100));
     auto* rf = app.add_subcommand("refraction", "ss, lbl and mdom at refracting boundaries: accuracy and ss's time");

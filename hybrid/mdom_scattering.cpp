@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -26,19 +27,15 @@ MdomScattering::MdomScattering() : impl_(std::make_unique<Impl>()) {}
 MdomScattering::~MdomScattering() = default;
 std::string MdomScattering::deviceName() const { return impl_->device.name(); }
 
-namespace {
-DomPool poolOf(double share) { return DomPool{share}; }
-}  // namespace
-
 size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, int bands, double devicePool) {
     // The solver's buffers, and the direct pass's: two extinctions, two results, the blockers.
     const size_t voxels = GridIndex{dims}.count();
-    return DomSolver::bytesFor(dims, directions, bands, false, poolOf(devicePool)) +
+    return DomSolver::bytesFor(dims, directions, bands, false, DomPool(devicePool)) +
            voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
 }
 
 size_t MdomScattering::poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool) {
-    return DomSolver::hostBytesFor(dims, bands, poolOf(devicePool));
+    return DomSolver::hostBytesFor(dims, bands, DomPool(devicePool));
 }
 
 ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
@@ -344,13 +341,27 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     // float4 each per voxel) and the materials (4 float4): 3.78 GB peak measured
     // at 128^3, M = 16, against the device's 2.35 GB. With a pool, it also
     // holds the blocks.
-    const DomPool pool = poolOf(s.devicePool);
-    device.checkMemory(
-        bytesFor(shape.dims, s.directions, s.bands, s.devicePool),
-        DomSolver::largestBufferFor(shape.dims, s.bands, pool), what,
-        voxels * size_t(2 * moments + 4) * sizeof(glm::vec4) + DomSolver::hostBytesFor(shape.dims, s.bands, pool));
+    // Blocks that do not fit in the memory left spill to an unnamed file in
+    // the temporary directory (TMPDIR).
+    DomPool pool(s.devicePool);
+    const size_t deviceBytes = bytesFor(shape.dims, s.directions, s.bands, s.devicePool);
+    const size_t hostBytes = voxels * size_t(2 * moments + 4) * sizeof(glm::vec4);
+    const size_t blockBytes = DomSolver::hostBytesFor(shape.dims, s.bands, pool);
+    const size_t needed = hostBytes + blockBytes + (device.sharesHostMemory() ? deviceBytes : 0);
+    if (blockBytes > 0 && needed > ClDevice::hostMemoryAvailable(needed)) {
+        std::error_code error;
+        pool.spillTo = std::filesystem::temp_directory_path(error);
+        if (error)
+            throw Error(
+                "the device pool's blocks do not fit in memory, and there is no temporary directory to "
+                "spill them to: " +
+                error.message());
+    }
+    device.checkMemory(deviceBytes, DomSolver::largestBufferFor(shape.dims, s.bands, pool), what,
+                       hostBytes + (pool.spillTo.empty() ? blockBytes : 0));
     stats.poolSlots = DomSolver::slotsFor(shape.dims, pool);
-    stats.poolBlocks = s.devicePool > 0.0 ? BlockTiling(shape.dims, pool.edge).blocks() : 1;
+    stats.poolBlocks = DomSolver::pooled(shape.dims, pool) ? BlockTiling(shape.dims, pool.edge).blocks() : 1;
+    stats.spilled = !pool.spillTo.empty();
     const Voxelisation vox = voxelise(object, s.resolution);
     stats.voxeliseSeconds = stopwatch.seconds();
     stopwatch.restart();

@@ -82,6 +82,7 @@ struct MdomStats {
     Rgb ratio{0.0};                                 // of the last two generations' light
     int poolSlots = 1, poolBlocks = 1;              // blocks the device holds at once, of all
     double bytesToDevice = 0, bytesFromDevice = 0;  // the pool's copies
+    bool spilled = false;                           // the host's blocks in a file (TMPDIR)
 };
 
 class MdomScattering;

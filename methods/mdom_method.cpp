@@ -71,9 +71,11 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
                      stats.converged ? "" : " (not converged)", stats.directSeconds, stats.sweepSeconds,
                      stats.voxeliseSeconds);
         if (stats.poolBlocks > 1)
-            std::fprintf(
-                stderr, "lucent: mdom: the device held %d of %d blocks at a time: %.0f MB copied to it, %.0f MB back\n",
-                stats.poolSlots, stats.poolBlocks, stats.bytesToDevice / 1e6, stats.bytesFromDevice / 1e6);
+            std::fprintf(stderr,
+                         "lucent: mdom: the device held %d of %d blocks at a time: %.0f MB copied to it, %.0f MB "
+                         "back%s\n",
+                         stats.poolSlots, stats.poolBlocks, stats.bytesToDevice / 1e6, stats.bytesFromDevice / 1e6,
+                         stats.spilled ? "; the host's blocks spilled to a file in the temporary directory" : "");
     }
     return grids;
 }

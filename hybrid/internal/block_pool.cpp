@@ -81,7 +81,8 @@ void BlockTiling::fromBlock(int b, const void* block, void* grid, size_t bytes) 
     });
 }
 
-BlockPool::BlockPool(const cl::Context& context, const BlockTiling& tiling, std::vector<size_t> volumeBytes, int slots)
+BlockPool::BlockPool(const cl::Context& context, const BlockTiling& tiling, std::vector<size_t> volumeBytes, int slots,
+                     const std::filesystem::path& spillTo)
     : tiling_(tiling), volumeBytes_(std::move(volumeBytes)), slotOf_(tiling.blocks(), -1) {
     if (slots < 1 || slots > tiling.blocks())
         throw Error("internal: a pool of " + std::to_string(slots) + " slots for " + std::to_string(tiling.blocks()) +
@@ -91,7 +92,20 @@ BlockPool::BlockPool(const cl::Context& context, const BlockTiling& tiling, std:
     slots_.resize(slots);
     for (Slot& s : slots_)
         for (size_t bytes : volumeBytes_) s.buffers.push_back(zeroBuffer(context, voxels * bytes));
-    host_.assign(tiling.blocks(), std::vector<std::vector<char>>(volumeBytes_.size()));
+    size_t perVoxel = 0;
+    for (size_t b : volumeBytes_) perVoxel += b;
+    for (int b = 0; b <= tiling.blocks(); ++b)
+        offset_.push_back(b == 0 ? 0 : offset_.back() + tiling.voxels(b - 1) * perVoxel);
+    for (size_t v = 0; v < volumeBytes_.size(); ++v) place_.push_back(int(v));
+    stored_.assign(tiling.blocks(), 0);
+    if (!holdsAll()) host_ = HostBlocks(offset_.back(), spillTo);
+}
+
+char* BlockPool::hostOf(int b, int volume) {
+    if (!host_.data()) throw Error("internal: a pool holding every block has no host copies");
+    size_t at = offset_[b];
+    for (int v = 0; v < place_[volume]; ++v) at += bytesOf(b, v);
+    return host_.data() + at;
 }
 
 size_t BlockPool::deviceBytes(int edge, const std::vector<size_t>& volumeBytes, int slots) {
@@ -117,11 +131,11 @@ int BlockPool::victim() {
 void BlockPool::writeBack(const cl::CommandQueue& queue, Slot& slot, unsigned volumes) {
     for (size_t v = 0; v < volumeBytes_.size(); ++v) {
         if (!((volumes >> v) & 1u)) continue;
-        std::vector<char>& host = host_[slot.block][v];
-        host.resize(bytesOf(slot.block, int(v)));
-        queue.enqueueReadBuffer(slot.buffers[v], CL_TRUE, 0, host.size(), host.data());
+        const size_t bytes = bytesOf(slot.block, int(v));
+        queue.enqueueReadBuffer(slot.buffers[v], CL_TRUE, 0, bytes, hostOf(slot.block, int(v)));
         ++traffic_.writeBacks;
-        traffic_.bytesDown += double(host.size());
+        traffic_.bytesDown += double(bytes);
+        stored_[slot.block] |= 1u << v;
         slot.dirty &= ~(1u << v);
     }
 }
@@ -145,16 +159,13 @@ int BlockPool::acquire(const cl::CommandQueue& queue, int b, unsigned need, unsi
     const unsigned missing = need & ~slot.valid;
     for (size_t v = 0; v < volumeBytes_.size(); ++v) {
         if (!((missing >> v) & 1u) || volumeBytes_[v] == 0) continue;
-        std::vector<char>& host = host_[b][v];
         const size_t bytes = bytesOf(b, int(v));
-        if (host.empty())  // never written: zeros
+        if ((stored_[b] >> v) & 1u)
+            queue.enqueueWriteBuffer(slot.buffers[v], CL_TRUE, 0, bytes, hostOf(b, int(v)));
+        else  // never stored: zeros
             queue.enqueueFillBuffer(slot.buffers[v], cl_uchar(0), 0, bytes);
-        else
-            queue.enqueueWriteBuffer(slot.buffers[v], CL_TRUE, 0, bytes, host.data());
         ++traffic_.uploads;
         traffic_.bytesUp += double(bytes);
-        // Holding every block, the device's copy is the only one needed.
-        if (holdsAll()) std::vector<char>().swap(host);
         slot.valid |= 1u << v;
     }
     return s;
@@ -171,35 +182,31 @@ void BlockPool::set(const cl::CommandQueue& queue, int b, int volume, const void
         queue.enqueueWriteBuffer(slots_[s].buffers[volume], CL_TRUE, 0, bytes, values);
         slots_[s].valid |= 1u << volume;
         slots_[s].dirty |= 1u << volume;
-        std::vector<char>().swap(host_[b][volume]);
         return;
     }
-    std::vector<char>& host = host_[b][volume];
-    host.resize(bytes);
-    std::memcpy(host.data(), values, bytes);
+    std::memcpy(hostOf(b, volume), values, bytes);
+    stored_[b] |= 1u << volume;
 }
 
 void BlockPool::get(const cl::CommandQueue& queue, int b, int volume, void* values) {
     const size_t bytes = bytesOf(b, volume);
     const int s = slotOf_[b];
-    if (s >= 0 && (slots_[s].valid >> volume) & 1u) {
+    if (s >= 0 && (slots_[s].valid >> volume) & 1u)
         queue.enqueueReadBuffer(slots_[s].buffers[volume], CL_TRUE, 0, bytes, values);
-        return;
-    }
-    const std::vector<char>& host = host_[b][volume];
-    if (host.empty())
-        std::memset(values, 0, bytes);
+    else if ((stored_[b] >> volume) & 1u)
+        std::memcpy(values, hostOf(b, volume), bytes);
     else
-        std::memcpy(values, host.data(), bytes);
+        std::memset(values, 0, bytes);
 }
 
 void BlockPool::swapVolumes(int a, int c) {
     if (volumeBytes_[a] != volumeBytes_[c]) throw Error("internal: swapping volumes of different sizes");
-    for (auto& block : host_) std::swap(block[a], block[c]);
+    std::swap(place_[a], place_[c]);
     auto swapBits = [&](unsigned& bits) {
         const unsigned x = (bits >> a) & 1u, y = (bits >> c) & 1u;
         bits = (bits & ~((1u << a) | (1u << c))) | (x << c) | (y << a);
     };
+    for (unsigned& bits : stored_) swapBits(bits);
     for (Slot& s : slots_) {
         std::swap(s.buffers[a], s.buffers[c]);
         swapBits(s.valid);

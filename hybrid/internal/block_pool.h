@@ -10,9 +10,11 @@
 // wavefront, then a dirty one, then one in use.
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <vector>
 
 #include "hybrid/internal/cl_device.h"
+#include "hybrid/internal/host_blocks.h"
 
 namespace lucent::hybrid {
 
@@ -55,7 +57,11 @@ public:
     // slots: how many blocks the device holds at once (at most every block).
     // When it holds every block, nothing is ever taken back: the host keeps
     // no copies, and a volume set while resident goes straight to the device.
-    BlockPool(const cl::Context& context, const BlockTiling& tiling, std::vector<size_t> volumeBytes, int slots);
+    // spillTo: a directory to keep the host's copies in (host_blocks.h); empty: memory.
+    BlockPool(const cl::Context& context, const BlockTiling& tiling, std::vector<size_t> volumeBytes, int slots,
+              const std::filesystem::path& spillTo = {});
+    // Whether the host's copies went to a file.
+    bool spilled() const { return host_.spilled(); }
 
     int slots() const { return int(slots_.size()); }
     bool holdsAll() const { return slots() == tiling_.blocks(); }
@@ -92,15 +98,20 @@ private:
         std::vector<cl::Buffer> buffers;
     };
     size_t bytesOf(int b, int volume) const { return tiling_.voxels(b) * volumeBytes_[volume]; }
+    // Where the host keeps block b's volume.
+    char* hostOf(int b, int volume);
     int victim();
     void writeBack(const cl::CommandQueue& queue, Slot& slot, unsigned volumes);
 
     BlockTiling tiling_;
     std::vector<size_t> volumeBytes_;
     std::vector<Slot> slots_;
-    std::vector<int> slotOf_;                           // per block, or -1
-    std::vector<std::vector<std::vector<char>>> host_;  // [block][volume]; empty: zeros
-    int hand_ = 0;                                      // where the search for a victim starts
+    std::vector<int> slotOf_;       // per block, or -1
+    HostBlocks host_;               // the host's copies; none when the pool holds every block
+    std::vector<size_t> offset_;    // where each block's volumes start in host_
+    std::vector<int> place_;        // per volume, the volume whose place in each block it has (swapVolumes)
+    std::vector<unsigned> stored_;  // per block, the volumes the host holds (the others are zeros)
+    int hand_ = 0;                  // where the search for a victim starts
     Traffic traffic_;
 };
 

@@ -138,10 +138,9 @@ cl::Buffer zeroBuffer(const cl::Context& context, size_t bytes) {
     return cl::Buffer(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, zeros.size(), zeros.data());
 }
 
-namespace {
 // What the kernel says can still be allocated without swapping (MemAvailable:
 // free memory plus caches it can drop), or fallback when it does not say.
-size_t availableMemory(size_t fallback) {
+size_t ClDevice::hostMemoryAvailable(size_t fallback) {
     std::ifstream meminfo("/proc/meminfo");
     std::string key;
     size_t kib = 0;
@@ -150,7 +149,11 @@ size_t availableMemory(size_t fallback) {
         if (key == "MemAvailable:") return kib * 1024;
     return fallback;
 }
-}  // namespace
+
+bool ClDevice::sharesHostMemory() const {
+    return device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE ||
+           device.getInfo<CL_DEVICE_TYPE>() == CL_DEVICE_TYPE_CPU;
+}
 
 void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string& what, size_t hostBytes) const {
     const size_t total = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
@@ -160,10 +163,8 @@ void ClDevice::checkMemory(size_t bytes, size_t largestBuffer, const std::string
         throw Error("OpenCL device '" + name() + "' cannot hold " + what + ": it needs " + mib(bytes) +
                     " (largest buffer " + mib(largestBuffer) + "), the device has " + mib(total) + " (" + mib(single) +
                     " per buffer); use a smaller grid (--grid)");
-    const bool shared = device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE ||
-                        device.getInfo<CL_DEVICE_TYPE>() == CL_DEVICE_TYPE_CPU;
-    if (!shared) return;
-    const size_t available = availableMemory(total);
+    if (!sharesHostMemory()) return;
+    const size_t available = hostMemoryAvailable(total);
     if (bytes + hostBytes > std::min(total, available))
         throw Error("OpenCL device '" + name() + "' cannot hold " + what + ": it needs " + mib(bytes) +
                     " on the device and " + mib(hostBytes) + " more on the host, which share this machine's " +

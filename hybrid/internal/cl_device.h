@@ -42,6 +42,11 @@ public:
     // passed that check was killed by the kernel at 24 GB.
     void checkMemory(size_t bytes, size_t largestBuffer, const std::string& what, size_t hostBytes = 0) const;
 
+    // Whether the device's memory is the host's (PoCL on the CPU).
+    bool sharesHostMemory() const;
+    // What the machine can still allocate without swapping (MemAvailable), or fallback.
+    static size_t hostMemoryAvailable(size_t fallback);
+
     std::string name() const;
 
     cl::Context context;

@@ -62,20 +62,28 @@ std::vector<size_t> DomSolver::volumeBytes(int bands, bool mirrors) {
             moments,           moments,           moments,           moments};
 }
 
-int DomSolver::slotsFor(const std::array<int, 3>& dims, const DomPool& pool) {
-    if (!(pool.share > 0.0)) return 1;
+namespace {
+int shareOf(const std::array<int, 3>& dims, const DomPool& pool) {
     const int blocks = BlockTiling(dims, pool.edge).blocks();
     return std::clamp(int(std::ceil(pool.share * blocks - 1e-9)), 1, blocks);
 }
+}  // namespace
+
+bool DomSolver::pooled(const std::array<int, 3>& dims, const DomPool& pool) {
+    return pool.share > 0.0 && shareOf(dims, pool) < BlockTiling(dims, pool.edge).blocks();
+}
+
+int DomSolver::slotsFor(const std::array<int, 3>& dims, const DomPool& pool) {
+    return pooled(dims, pool) ? shareOf(dims, pool) : 1;
+}
 
 size_t DomSolver::largestBufferFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
-    const std::array<int, 3> d = pool.share > 0.0 ? BlockTiling(dims, pool.edge).maxDims() : dims;
+    const std::array<int, 3> d = pooled(dims, pool) ? BlockTiling(dims, pool.edge).maxDims() : dims;
     return size_t(d[0]) * d[1] * d[2] * bands * bands * sizeof(glm::vec4);
 }
 
 size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
-    // Holding every block, the device's copies are the only ones.
-    if (!(pool.share > 0.0) || slotsFor(dims, pool) == BlockTiling(dims, pool.edge).blocks()) return 0;
+    if (!pooled(dims, pool)) return 0;
     size_t perVoxel = 0;
     for (size_t b : volumeBytes(bands, false)) perVoxel += b;
     return GridIndex{dims}.count() * perVoxel;
@@ -83,14 +91,14 @@ size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const 
 
 size_t DomSolver::bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared,
                            const DomPool& pool) {
-    const std::array<int, 3> d = pool.share > 0.0 ? BlockTiling(dims, pool.edge).maxDims() : dims;
+    const std::array<int, 3> d = pooled(dims, pool) ? BlockTiling(dims, pool.edge).maxDims() : dims;
     const int slots = slotsFor(dims, pool);
     // Per slot: source, flux, last flux, total and three float4 materials; two
     // face buffers; two boundaries (three shared or pooled).
     const size_t voxels = size_t(d[0]) * d[1] * d[2];
     return slots * (4 * largestBufferFor(d, bands) + voxels * 3 * sizeof(glm::vec4)) +
            (size_t(d[0]) * (d[1] + d[2])) * directions / 8 * sizeof(glm::vec4) +
-           (shared || pool.share > 0.0 ? 3 : 2) * faceOffset(6, d, directions) * sizeof(glm::vec4);
+           (shared || pooled(dims, pool) ? 3 : 2) * faceOffset(6, d, directions) * sizeof(glm::vec4);
 }
 
 DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands,
@@ -98,7 +106,7 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     : grid_(grid),
       ordinates_(ordinatesFor(directions)),
       moments_(bands * bands),
-      tiling_(grid.dims, pool.share > 0.0 ? pool.edge : std::max({grid.dims[0], grid.dims[1], grid.dims[2], 1})),
+      tiling_(grid.dims, pooled(grid.dims, pool) ? pool.edge : std::max({grid.dims[0], grid.dims[1], grid.dims[2], 1})),
       halo_(halo) {
     if (bands < 1 || bands > kMaxBands)
         throw Error("discrete ordinates: 1 to " + std::to_string(kMaxBands) + " bands of moments, not " +
@@ -183,7 +191,8 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
 
     // The volumes: with a pool holding every block, all are resident from the
     // start (zeros) and what is set goes straight to the device.
-    pool_ = std::make_unique<BlockPool>(cx, tiling_, volumeBytes(bands, mirrors_), slotsFor(grid.dims, pool));
+    pool_ =
+        std::make_unique<BlockPool>(cx, tiling_, volumeBytes(bands, mirrors_), slotsFor(grid.dims, pool), pool.spillTo);
     const cl::CommandQueue& queue = device.marchQueue;
     if (pool_->holdsAll())
         for (int b = 0; b < tiling_.blocks(); ++b) pool_->acquire(queue, b, 0, ~0u);

@@ -6,8 +6,10 @@
 // next one's, G the total). Used by the renderer's mdom method and by
 // `lucent transport`; knows nothing of meshes or lights.
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -45,9 +47,13 @@ using BoundaryFlags = std::array<bool, 6>;
 // Where the solver's volumes live (block_pool.h). share 0: the whole grid on
 // the device, as one block. Above 0: in blocks of edge^3 voxels in host
 // memory, of which the device holds this share at once (one block at least).
+// A share that holds every block needs no blocks: the whole grid is one.
 struct DomPool {
-    double share = 0.0;
-    int edge = 32;
+    DomPool(double share = 0.0, int edge = 32, std::filesystem::path spillTo = {})
+        : share(share), edge(edge), spillTo(std::move(spillTo)) {}
+    double share;
+    int edge;
+    std::filesystem::path spillTo;  // a directory for the host's blocks (host_blocks.h); empty: memory
 };
 
 class DomSolver {
@@ -72,8 +78,11 @@ public:
                            const DomPool& pool = {});
     static size_t largestBufferFor(const std::array<int, 3>& dims, int bands, const DomPool& pool = {});
     static size_t hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool);
-    // Blocks in the device's pool (1 without one).
+    // Whether the pool cuts the grid into blocks, and how many the device holds (1 without).
+    static bool pooled(const std::array<int, 3>& dims, const DomPool& pool);
     static int slotsFor(const std::array<int, 3>& dims, const DomPool& pool);
+    // Whether the host's blocks went to a file.
+    bool spilled() const { return pool_->spilled(); }
     // The faces of the inner boundary: [voxel][6], each voxel's faces to -x,
     // +x, -y, +y, -z and +z, numbered where one side's flux is wanted and the
     // other is air, else -1.

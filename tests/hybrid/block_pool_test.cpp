@@ -7,10 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 
 #include "core/spherical_harmonics.h"
+#include "core/error.h"
 #include "hybrid/internal/block_pool.h"
+#include "hybrid/internal/host_blocks.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/internal/dom_solver.h"
 #include "hybrid/ordinates.h"
@@ -113,22 +116,43 @@ Solve solveBall(const DomPool& pool) {
 
 TEST(BlockPool, SweepsThroughAFewBlocksGiveTheWholeGridsFlux) {
     const Solve whole = solveBall({});
-    const Solve all = solveBall({1.0, 8});   // 27 blocks of 8^3, all on the device
-    const Solve few = solveBall({0.05, 8});  // 2 of them at a time
+    const Solve half = solveBall({0.5, 8});  // 27 blocks of 8^3, 14 on the device
+    const Solve few = solveBall({0.05, 8});  // 2 of them
+    // The host's blocks in an unnamed file of the temporary directory.
+    const Solve spilled = solveBall({0.05, 8, std::filesystem::temp_directory_path()});
     double largest = 0.0;
     for (const glm::vec4& f : whole.flux) largest = std::max(largest, double(glm::length(glm::vec3(f))));
     ASSERT_GT(largest, 0.0);
-    for (const Solve* s : {&all, &few}) {
+    for (const Solve* s : {&half, &few, &spilled}) {
         ASSERT_EQ(s->flux.size(), whole.flux.size());
         double worst = 0.0;
         for (size_t i = 0; i < whole.flux.size(); ++i)
             worst = std::max(worst, double(glm::length(glm::vec3(s->flux[i] - whole.flux[i]))));
-        EXPECT_LE(worst, 1e-5 * largest) << (s == &few ? "5% pool" : "100% pool");
+        EXPECT_LE(worst, 1e-5 * largest) << (s == &half ? "50% pool" : s == &few ? "5% pool" : "spilled");
     }
-    // Holding everything nothing is copied back; holding 2 of 27 blocks, each
-    // sweep streams every block in and the written ones out.
-    EXPECT_EQ(all.traffic.writeBacks, 0u);
+    // Holding 2 of 27 blocks, each octant streams every block in and its flux out.
     EXPECT_GT(few.traffic.writeBacks, size_t(6 * 8 * 27));
+    EXPECT_LT(half.traffic.bytesUp, few.traffic.bytesUp);
+}
+
+TEST(BlockPool, HoldingEveryBlockIsTheWholeGrid) {
+    // 8 blocks of 32^3: a share of 0.9 is ceil(7.2) = 8 of them, 0.85 is 7.
+    EXPECT_FALSE(DomSolver::pooled({64, 64, 64}, {1.0}));
+    EXPECT_FALSE(DomSolver::pooled({64, 64, 64}, {0.9}));
+    EXPECT_TRUE(DomSolver::pooled({64, 64, 64}, {0.85}));
+    EXPECT_EQ(DomSolver::slotsFor({64, 64, 64}, {0.85}), 7);
+    EXPECT_EQ(DomSolver::slotsFor({128, 128, 128}, {0.05}), 4);  // of 64
+    EXPECT_EQ(DomSolver::slotsFor({128, 128, 128}, {1e-9}), 1);  // one block at least
+    EXPECT_EQ(DomSolver::hostBytesFor({64, 64, 64}, 4, {1.0}), 0u);
+}
+
+TEST(BlockPool, SpillingWhereNoFileCanBeMadeIsOneClearError) {
+    try {
+        HostBlocks blocks(1 << 20, "/nonexistent-lucent-directory");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent-lucent-directory"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
