@@ -101,6 +101,13 @@ BlockPool::BlockPool(const cl::Context& context, const BlockTiling& tiling, std:
     if (!holdsAll()) host_ = HostBlocks(offset_.back(), spillTo);
 }
 
+BlockPool::~BlockPool() {
+    try {
+        if (queue_()) queue_.finish();
+    } catch (const cl::Error&) {  // a device lost: nothing more will be copied either
+    }
+}
+
 char* BlockPool::hostOf(int b, int volume) {
     if (!host_.data()) throw Error("internal: a pool holding every block has no host copies");
     size_t at = offset_[b];
@@ -132,7 +139,7 @@ void BlockPool::writeBack(const cl::CommandQueue& queue, Slot& slot, unsigned vo
     for (size_t v = 0; v < volumeBytes_.size(); ++v) {
         if (!((volumes >> v) & 1u)) continue;
         const size_t bytes = bytesOf(slot.block, int(v));
-        queue.enqueueReadBuffer(slot.buffers[v], CL_TRUE, 0, bytes, hostOf(slot.block, int(v)));
+        queue.enqueueReadBuffer(slot.buffers[v], CL_FALSE, 0, bytes, hostOf(slot.block, int(v)));
         ++traffic_.writeBacks;
         traffic_.bytesDown += double(bytes);
         stored_[slot.block] |= 1u << v;
@@ -141,6 +148,7 @@ void BlockPool::writeBack(const cl::CommandQueue& queue, Slot& slot, unsigned vo
 }
 
 int BlockPool::acquire(const cl::CommandQueue& queue, int b, unsigned need, unsigned replaced) {
+    queue_ = queue;
     int s = slotOf_[b];
     if (s < 0) {
         s = victim();
@@ -161,7 +169,7 @@ int BlockPool::acquire(const cl::CommandQueue& queue, int b, unsigned need, unsi
         if (!((missing >> v) & 1u) || volumeBytes_[v] == 0) continue;
         const size_t bytes = bytesOf(b, int(v));
         if ((stored_[b] >> v) & 1u)
-            queue.enqueueWriteBuffer(slot.buffers[v], CL_TRUE, 0, bytes, hostOf(b, int(v)));
+            queue.enqueueWriteBuffer(slot.buffers[v], CL_FALSE, 0, bytes, hostOf(b, int(v)));
         else  // never stored: zeros
             queue.enqueueFillBuffer(slot.buffers[v], cl_uchar(0), 0, bytes);
         ++traffic_.uploads;
@@ -184,6 +192,7 @@ void BlockPool::set(const cl::CommandQueue& queue, int b, int volume, const void
         slots_[s].dirty |= 1u << volume;
         return;
     }
+    queue.finish();  // no copy of the queue's still reads the host's blocks
     std::memcpy(hostOf(b, volume), values, bytes);
     stored_[b] |= 1u << volume;
 }
@@ -193,9 +202,10 @@ void BlockPool::get(const cl::CommandQueue& queue, int b, int volume, void* valu
     const int s = slotOf_[b];
     if (s >= 0 && (slots_[s].valid >> volume) & 1u)
         queue.enqueueReadBuffer(slots_[s].buffers[volume], CL_TRUE, 0, bytes, values);
-    else if ((stored_[b] >> volume) & 1u)
+    else if ((stored_[b] >> volume) & 1u) {
+        queue.finish();  // the queue's copies back are in
         std::memcpy(values, hostOf(b, volume), bytes);
-    else
+    } else
         std::memset(values, 0, bytes);
 }
 

@@ -51,6 +51,8 @@ private:
     int edge_;
 };
 
+// Its copies are queued without waiting: the queue is in order, and the host
+// reads or writes its blocks only once the queue has finished.
 class BlockPool {
 public:
     // volumeBytes: per voxel, each volume's size (0: the volume is not used);
@@ -62,6 +64,11 @@ public:
               const std::filesystem::path& spillTo = {});
     // Whether the host's copies went to a file.
     bool spilled() const { return host_.spilled(); }
+
+    // Waits for the copies still queued into the host's blocks.
+    ~BlockPool();
+    BlockPool(const BlockPool&) = delete;
+    BlockPool& operator=(const BlockPool&) = delete;
 
     int slots() const { return int(slots_.size()); }
     bool holdsAll() const { return slots() == tiling_.blocks(); }
@@ -112,6 +119,7 @@ private:
     std::vector<int> place_;        // per volume, the volume whose place in each block it has (swapVolumes)
     std::vector<unsigned> stored_;  // per block, the volumes the host holds (the others are zeros)
     int hand_ = 0;                  // where the search for a victim starts
+    cl::CommandQueue queue_;        // the one copies were last queued on
     Traffic traffic_;
 };
 

@@ -236,8 +236,7 @@ void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>&
 }
 
 Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
-    Rgb sum(0.0);
-    std::vector<glm::vec4> partial(kPartials);
+    std::vector<glm::vec4> partial(size_t(kPartials) * tiling_.blocks());
     const unsigned need = 1u << kFlux | 1u << kTotal | 1u << kScattering | 1u << kPhase;
     for (int b = 0; b < tiling_.blocks(); ++b) {
         pool_->newWavefront();
@@ -248,9 +247,7 @@ Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
         power_.setArg(1, partial_);
         power_.setArg(2, cl_int(voxels));
         queue.enqueueNDRangeKernel(power_, cl::NullRange, cl::NDRange(kPartials));
-        queue.enqueueReadBuffer(partial_, CL_TRUE, 0, kPartials * sizeof(glm::vec4), partial.data());
-        for (const glm::vec4& p : partial)
-            for (int c = 0; c < 3; ++c) sum[c] += p[c];
+        queue.enqueueReadBuffer(partial_, CL_FALSE, 0, kPartials * sizeof(glm::vec4), &partial[size_t(b) * kPartials]);
         scatter_.setArg(0, flux);
         scatter_.setArg(1, pool_->buffer(slot, kTotal));
         scatter_.setArg(2, pool_->buffer(slot, kSource));
@@ -262,6 +259,10 @@ Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
     }
     // The flux just scattered is the last flux; the cleared one takes the next generation.
     pool_->swapVolumes(kFlux, kLastFlux);
+    queue.finish();
+    Rgb sum(0.0);
+    for (const glm::vec4& p : partial)
+        for (int c = 0; c < 3; ++c) sum[c] += p[c];
     if (halo_) halo_->sum(&sum[0], 3);
     return sum;
 }
@@ -287,7 +288,7 @@ void DomSolver::receiveFaces(cl::CommandQueue& queue, int octant, int b) {
         const std::vector<glm::vec4>& faces = leaving_[size_t(from) * 3 + a];
         const size_t cells = faces.size() / k;
         const size_t first = faceOffset(2 * a + down, d, n) / n;  // the face's first cell
-        queue.enqueueWriteBufferRect(haloIn_, CL_TRUE, {octant * k * sizeof(glm::vec4), first, 0}, {0, 0, 0},
+        queue.enqueueWriteBufferRect(haloIn_, CL_FALSE, {octant * k * sizeof(glm::vec4), first, 0}, {0, 0, 0},
                                      {k * sizeof(glm::vec4), cells, 1}, n * sizeof(glm::vec4), 0, k * sizeof(glm::vec4),
                                      0, faces.data());
     }
@@ -305,7 +306,7 @@ void DomSolver::keepFaces(cl::CommandQueue& queue, int octant, int b) {
         std::vector<glm::vec4>& faces = leaving_[size_t(b) * 3 + a];
         faces.resize(cellsOf[a] * k);
         const size_t first = faceOffset(2 * a + !down, d, n) / n;
-        queue.enqueueReadBufferRect(boundary_[(swaps_ + 1) % 2], CL_TRUE, {octant * k * sizeof(glm::vec4), first, 0},
+        queue.enqueueReadBufferRect(boundary_[(swaps_ + 1) % 2], CL_FALSE, {octant * k * sizeof(glm::vec4), first, 0},
                                     {0, 0, 0}, {k * sizeof(glm::vec4), cellsOf[a], 1}, n * sizeof(glm::vec4), 0,
                                     k * sizeof(glm::vec4), 0, faces.data());
     }
