@@ -29,6 +29,7 @@ public:
     void send(int to, const float* values, size_t count) const override;
     void receive(int from, float* values, size_t count) const override;
     void sum(double* values, int count) const override;
+    [[noreturn]] void abort(const std::string& why) const override { abortJob(why); }
 
     // Collective: where any rank failed (failure: this rank's error, empty if
     // none), every rank leaves: the one to say why throws it as an Error, the

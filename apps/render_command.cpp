@@ -61,24 +61,26 @@ Frame renderFrame(const RenderOptions& o, const Ranks& ranks) {
     settings.seed = std::stoull(o.seed);
     Frame frame;
     frame.split = ranks.size() > 1 && method.entry->splitsRows;
+    const bool shares = ranks.size() > 1 && method.entry->sharesSweeps;
     if (frame.split) settings.rows = RowShare{ranks.rank(), ranks.size()};
-    if (ranks.size() > 1 && !frame.split)
-        say({"--method " + method.entry->name + " does not split its image across the " + std::to_string(ranks.size()) +
-             " ranks: rank 0 renders all of it (path and reference split; docs/mpi.md)"});
+    if (shares) settings.peers = &ranks;
+    if (ranks.size() > 1 && !frame.split && !shares)
+        say({"--method " + method.entry->name + " does not share its work with the " + std::to_string(ranks.size()) +
+             " ranks: rank 0 renders all of it (path and reference split the image, mdom its sweeps; docs/mpi.md)"});
     std::vector<std::string> ignored;
     const MethodOptions options = methodOptions(*method.entry, givenMethodOptions(o.methodValues, o.methodOptions),
                                                 !method.reason.empty(), ignored);
     say(ignored);
     const std::unique_ptr<Method> renderer = method.entry->create(options);
-    if (!frame.split && !speaks) return frame;
-    renderer->prepare(scene, settings);  // while the scene loads
+    if (!frame.split && !shares && !speaks) return frame;
+    if (speaks || frame.split) renderer->prepare(scene, settings);  // while the scene loads; only where it draws
     LoadedScene loaded = loadScene(scene, method.entry->needsSamples);
     say(loaded.warnings);
     say(renderer->limitations(loaded, settings));  // before the work, not after
     std::string servedBy;
     frame.image = renderWith(*method.entry, *renderer, loaded, settings, &servedBy);
     frame.used = method.entry->name + (servedBy.empty() ? "" : " on " + servedBy) +
-                 (frame.split ? ", " + std::to_string(ranks.size()) + " ranks" : "");
+                 (frame.split || shares ? ", " + std::to_string(ranks.size()) + " ranks" : "");
     frame.why = method.reason.empty() ? "" : ", chosen by auto: " + method.reason;
     return frame;
 }
@@ -101,8 +103,8 @@ Command addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* sub = app.add_subcommand("render",
                                        "Render one frame of a scene offscreen. Under mpirun, path and reference "
-                                       "share the image's rows among the ranks (a build with OpenMPI, "
-                                       "libopenmpi-dev; docs/mpi.md)");
+                                       "share the image's rows among the ranks and mdom its sweeps (a build with "
+                                       "OpenMPI, libopenmpi-dev; docs/mpi.md)");
     sub->add_option("scene", o->scene, "Scene file: JSON, or glTF 2.0 (.gltf, .glb; docs/gltf.md)")->required();
     sub->add_option("--camera", o->camera,
                     "glTF scenes: the camera to look through, by name (default: the file's first)");
@@ -129,6 +131,7 @@ Command addRenderCommand(CLI::App& app) {
             failure = e.what();
         } catch (const std::bad_alloc&) {
             failure = "out of memory";
+        } catch (const PeerFailed&) {  // the rank that failed says why
         }
         // Every rank reaches this point, failed or not: none is left waiting.
         ranks.leaveIfAnyFailed(failure);

@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "core/loaded_scene.h"
 #include "core/method_options.h"
+#include "core/peers.h"
 
 namespace lucent {
 
@@ -44,6 +45,9 @@ struct MethodSettings {
     double cutoff =
         kDefaultGaussianCutoff;  // sample methods: a Gaussian is drawn where it exceeds this fraction of its peak
     RowShare rows;               // the rows to render, by the methods that split rows (MethodEntry::splitsRows)
+    // The ranks of an MPI job, to the methods that share their work among them
+    // (MethodEntry::sharesSweeps); only rank 0's image is whole.
+    const Peers* peers = nullptr;
 };
 
 class Method {
@@ -76,6 +80,9 @@ struct MethodEntry {
     // The method with its options read: MethodOptions(options) with what the caller set.
     std::function<std::unique_ptr<Method>(const MethodOptions&)> create;
     bool splitsRows = false;  // honours MethodSettings::rows: ranks under mpirun share its image
+    // Under mpirun every rank renders with MethodSettings::peers, sharing the
+    // solve (mdom's sweeps); rank 0's image is the frame.
+    bool sharesSweeps = false;
     // The method with every option at its default.
     std::unique_ptr<Method> createDefault() const { return create(MethodOptions(options)); }
 };

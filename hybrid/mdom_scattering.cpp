@@ -13,6 +13,7 @@
 #include "core/stopwatch.h"
 #include "hybrid/internal/cl_device.h"
 #include "hybrid/internal/dom_solver.h"
+#include "hybrid/internal/sweep_halo.h"
 #include "hybrid/ordinates.h"
 #include "hybrid/voxelisation.h"
 
@@ -84,11 +85,17 @@ struct MdomProgress::Impl {
     std::string what;
     MdomStats stats;
     MdomSolution solution;  // all but the moments
+    SweepPartition part;    // this rank's share of the voxels (all of them alone)
+    std::optional<SweepHalo> halo;
     std::unique_ptr<DomSolver> solver;
 
+    const Peers* shared() const { return settings.peers && settings.peers->size() > 1 ? settings.peers : nullptr; }
+    // A device failure; during shared sweeps the other ranks may wait for this one, so it ends the job.
     [[noreturn]] void fail(const cl::Error& e) const {
-        throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +
-                    clErrorText(e.err()));
+        const std::string why =
+            "OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " + clErrorText(e.err());
+        if (shared()) shared()->abort(why);
+        throw Error(why);
     }
 };
 
@@ -122,6 +129,8 @@ MdomSolution MdomProgress::solution() const {
     } catch (const cl::Error& e) {
         impl_->fail(e);
     }
+    if (const Peers* peers = impl_->shared())
+        s.moments = gatherShares(s.dims, std::move(s.moments), size_t(s.bands) * s.bands, *peers);
     return s;
 }
 
@@ -327,25 +336,18 @@ DirectComponent directComponent(ClDevice& device, const cl::Program& program, co
 
 }  // namespace
 
-std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, const std::vector<Light>& lights,
-                                                    const MdomSettings& s) {
-    MdomStats stats;
-    ClDevice& device = impl_->device;
-    stats.device = device.name();
-    Stopwatch stopwatch;
-    const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
-    const std::string what = shape.describe(object.desc().name);
-    const size_t voxels = shape.count();
-    const int moments = s.bands * s.bands;
-    // The host keeps the source it uploads and the moments it reads back (M
-    // float4 each per voxel) and the materials (4 float4): 3.78 GB peak measured
-    // at 128^3, M = 16, against the device's 2.35 GB. With a pool, it also
-    // holds the blocks.
-    // Blocks that do not fit in the memory left spill to an unnamed file in
-    // the temporary directory (TMPDIR).
+namespace {
+
+// Checks that the solve fits, and where the pool's blocks live: blocks that do
+// not fit in the memory left spill to an unnamed file in the temporary
+// directory (TMPDIR). The host keeps the source it uploads and the moments it
+// reads back (M float4 each per voxel) and the materials (4 float4): 3.78 GB
+// peak measured at 128^3, M = 16, against the device's 2.35 GB.
+DomPool poolFor(const ClDevice& device, const GridShape& shape, const MdomSettings& s, const std::string& what,
+                MdomStats& stats) {
     DomPool pool(s.devicePool);
-    const size_t deviceBytes = bytesFor(shape.dims, s.directions, s.bands, s.devicePool);
-    const size_t hostBytes = voxels * size_t(2 * moments + 4) * sizeof(glm::vec4);
+    const size_t deviceBytes = MdomScattering::bytesFor(shape.dims, s.directions, s.bands, s.devicePool);
+    const size_t hostBytes = shape.count() * size_t(2 * s.bands * s.bands + 4) * sizeof(glm::vec4);
     const size_t blockBytes = DomSolver::hostBytesFor(shape.dims, s.bands, pool);
     const size_t needed = hostBytes + blockBytes + (device.sharesHostMemory() ? deviceBytes : 0);
     if (blockBytes > 0 && needed > ClDevice::hostMemoryAvailable(needed)) {
@@ -362,6 +364,68 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     stats.poolSlots = DomSolver::slotsFor(shape.dims, pool);
     stats.poolBlocks = DomSolver::pooled(shape.dims, pool) ? BlockTiling(shape.dims, pool.edge).blocks() : 1;
     stats.spilled = !pool.spillTo.empty();
+    return pool;
+}
+
+// A rank's share of the grid, with the inner boundary found on the whole grid
+// (a face on the share's border belongs to the voxel with medium beside it,
+// which sweeps its reflection on this rank or the next).
+DomGrid shareOf(const DomGrid& whole, const SweepPartition& part) {
+    const DomSolver::InnerBoundary inner = DomSolver::innerBoundary(whole);
+    DomGrid share;
+    share.dims = part.dims();
+    share.edges = whole.edges;
+    share.ior = whole.ior;
+    share.extinction = boxOf(whole.extinction, whole.dims, part.lo, part.hi);
+    share.scattering = boxOf(whole.scattering, whole.dims, part.lo, part.hi);
+    share.phase = boxOf(whole.phase, whole.dims, part.lo, part.hi);
+    if (!whole.boundaryNormal.empty()) share.boundaryNormal = boxOf(whole.boundaryNormal, whole.dims, part.lo, part.hi);
+    if (!inner.normals.empty()) {
+        share.innerFace = boxOf(inner.faces, whole.dims, part.lo, part.hi, 6);
+        share.faceNormal = inner.normals;
+    }
+    return share;
+}
+
+}  // namespace
+
+std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, const std::vector<Light>& lights,
+                                                    const MdomSettings& s) {
+    if (!s.peers || s.peers->size() == 1) return prepare(object, lights, s);
+    // Shared with the ranks of an MPI job: they agree before they first talk,
+    // so that a rank that failed leaves none waiting for it.
+    std::unique_ptr<MdomProgress> progress;
+    std::string failure;
+    try {
+        progress = prepare(object, lights, s);
+    } catch (const Error& e) {
+        failure = e.what();
+    } catch (const std::bad_alloc&) {
+        failure = "out of memory for " + object.desc().name;
+    }
+    double failed = failure.empty() ? 0.0 : 1.0;
+    s.peers->sum(&failed, 1);
+    if (!failure.empty()) throw Error(failure);
+    if (failed > 0.0) throw PeerFailed{};
+    return progress;
+}
+
+std::unique_ptr<MdomProgress> MdomScattering::prepare(const VolumeObject& object, const std::vector<Light>& lights,
+                                                      const MdomSettings& s) {
+    ClDevice& device = impl_->device;
+    Stopwatch stopwatch;
+    const GridShape shape = gridShapeFor(object.mesh().bounds(), s.resolution);
+    const std::string what = shape.describe(object.desc().name);
+    auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, {}, {}, {}, {}, {}});
+    MdomStats& stats = progress->stats;
+    stats.device = device.name();
+    const int ranks = progress->shared() ? s.peers->size() : 1;
+    progress->part = partitionSweeps(shape.dims, ranks > 1 ? s.peers->rank() : 0, ranks);
+    const DomPool pool = poolFor(device, shape, s, what, stats);
+    if (ranks > 1 && DomSolver::pooled(shape.dims, pool))
+        throw Error(
+            "--device-pool does not yet combine with MPI ranks: each rank's share of the voxels is swept "
+            "whole on its device (docs/mdom.md)");
     const Voxelisation vox = voxelise(object, s.resolution);
     stats.voxeliseSeconds = stopwatch.seconds();
     stopwatch.restart();
@@ -372,24 +436,32 @@ std::unique_ptr<MdomProgress> MdomScattering::begin(const VolumeObject& object, 
     try {
         DirectComponent direct = directComponent(device, impl_->direct, object, shape, materials, lights, dm, s.bands);
         stats.directSeconds = stopwatch.seconds();
-        auto progress = std::make_unique<MdomProgress::Impl>(MdomProgress::Impl{device, s, what, stats, {}, nullptr});
         MdomSolution& solution = progress->solution;
         solution.bounds = shape.bounds();
         solution.dims = shape.dims;
         solution.bands = s.bands;
         solution.g = medium.g;
         solution.extinction = std::move(materials.trueExtinction);
-        solution.scattering.resize(voxels);
-        for (size_t v = 0; v < voxels; ++v)
+        solution.scattering.resize(shape.count());
+        for (size_t v = 0; v < shape.count(); ++v)
             solution.scattering[v] = materials.opaque[v]
                                          ? glm::vec4(0.0f)
                                          : solution.extinction[v] * glm::vec4(glm::vec3(medium.albedo), 0.0f);
         solution.peaks = std::move(direct.peaks);
         solution.refraction = vox.viewRefraction();
         solution.ior = vox.ior;
-        progress->solver =
-            std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands, BoundaryFlags{}, nullptr, pool);
-        progress->solver->setSource(device.marchQueue, direct.source);
+        if (ranks == 1) {
+            progress->solver = std::make_unique<DomSolver>(device, materials.grid, s.directions, s.bands,
+                                                           BoundaryFlags{}, nullptr, pool);
+            progress->solver->setSource(device.marchQueue, direct.source);
+        } else {
+            const SweepPartition& part = progress->part;
+            progress->halo.emplace(*s.peers, part, s.directions);
+            progress->solver = std::make_unique<DomSolver>(device, shareOf(materials.grid, part), s.directions, s.bands,
+                                                           BoundaryFlags{}, &*progress->halo);
+            progress->solver->setSource(device.marchQueue,
+                                        boxOf(direct.source, shape.dims, part.lo, part.hi, size_t(s.bands) * s.bands));
+        }
         return std::unique_ptr<MdomProgress>(new MdomProgress(std::move(progress)));
     } catch (const cl::Error& e) {
         throw Error("OpenCL device '" + device.name() + "': " + e.what() + " failed for " + what + ": " +

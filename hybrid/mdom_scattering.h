@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/peers.h"
 #include "core/scattering_grid.h"
 #include "core/scene.h"
 #include "core/volume_object.h"
@@ -32,6 +33,12 @@ struct MdomSettings {
     // through a device pool of this share of them (one block at least); 0 keeps
     // the whole grid on the device.
     double devicePool = 0.0;
+    // The ranks of an MPI job to share the sweeps with (KBA, hybrid/internal/
+    // sweep_halo.h): each rank sweeps its column of voxels, and rank 0 gathers
+    // the solution (the others' solutions have no moments). A failure on any
+    // rank before the ranks talk ends every rank's solve (PeerFailed on all
+    // but the one that says why); one during the sweeps ends the job.
+    const Peers* peers = nullptr;
 };
 
 // The solution for one object. Per voxel: the moments T_lm = int L Y_lm of
@@ -129,6 +136,9 @@ public:
                        MdomStats* stats = nullptr, const IterationCallback& afterIteration = {});
 
 private:
+    // begin() on this rank alone, before any agreement with the others.
+    std::unique_ptr<MdomProgress> prepare(const VolumeObject& object, const std::vector<Light>& lights,
+                                          const MdomSettings& settings);
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

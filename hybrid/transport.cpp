@@ -115,33 +115,12 @@ void decideUncollided(const TransportProblem& p, const Materials& whole, Transpo
 // Every rank's zero moments into rank 0's grid of the whole problem, phi = sqrt(4 pi) phi_00.
 std::vector<float> gatherFlux(const TransportProblem& p, const std::vector<glm::vec4>& flux, int moments,
                               const SweepPartition& part, const Peers* peers) {
-    const GridIndex box{part.dims()};
-    std::vector<float> mine(box.count());
-    for (size_t v = 0; v < mine.size(); ++v) mine[v] = float(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));
-    const int ranks = peers ? peers->size() : 1;
-    if (ranks == 1) return mine;
-    if (peers->rank() != 0) {
-        peers->send(0, mine.data(), mine.size());
-        return {};
-    }
-    const GridIndex whole{p.cells};
-    std::vector<float> all(whole.count());
-    for (int r = 0; r < ranks; ++r) {
-        const SweepPartition share = partitionSweeps(p.cells, r, ranks);
-        const GridIndex at{share.dims()};
-        std::vector<float> theirs;
-        if (r == 0) {
-            theirs = std::move(mine);
-        } else {
-            theirs.resize(at.count());
-            peers->receive(r, theirs.data(), theirs.size());
-        }
-        for (size_t v = 0; v < theirs.size(); ++v) {
-            const std::array<int, 3> c = at.cell(v);
-            all[whole(c[0] + share.lo[0], c[1] + share.lo[1], c[2] + share.lo[2])] = theirs[v];
-        }
-    }
-    return all;
+    std::vector<glm::vec4> mine(GridIndex{part.dims()}.count());
+    for (size_t v = 0; v < mine.size(); ++v) mine[v].r = float(double(flux[v * moments].r) * std::sqrt(4.0 * kPi));
+    if (peers) mine = gatherShares(p.cells, std::move(mine), 1, *peers);
+    std::vector<float> out(mine.size());
+    for (size_t v = 0; v < mine.size(); ++v) out[v] = mine[v].r;
+    return out;
 }
 
 }  // namespace

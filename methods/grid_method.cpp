@@ -18,6 +18,8 @@ std::vector<std::string> GridMethod::limitations(const LoadedScene& scene, const
 Image GridMethod::render(const LoadedScene& scene, const MethodSettings& settings) {
     std::string device, backend;
     const std::vector<ScatteringGrid> grids = solveGrids(scene, settings, device);
+    // Sharing the solve with the ranks of an MPI job, only rank 0 holds the grids and draws.
+    if (settings.peers && settings.peers->rank() != 0) return Image{};
     Image image = renderSingleScattering(scene, settings, ss_, grids, backend);
     servedBy_ = backend + " + OpenCL '" + device + "'";
     return image;

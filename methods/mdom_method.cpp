@@ -58,11 +58,14 @@ std::vector<ScatteringGrid> MdomMethod::solveGrids(const LoadedScene& scene, con
     ms.directions = directions_;
     ms.bands = int(std::lround(std::sqrt(double(moments_))));
     ms.devicePool = devicePool_;
+    ms.peers = settings.peers;
     std::vector<ScatteringGrid> grids;
     for (const VolumeObject& object : scene.objects) {
         hybrid::MdomStats stats;
-        grids.push_back(solver.solve(object, scene.lightsWithEnvironment(environmentLights()), ms, &stats)
-                            .towards(scene.desc.camera.position));
+        const hybrid::MdomSolution solution =
+            solver.solve(object, scene.lightsWithEnvironment(environmentLights()), ms, &stats);
+        if (settings.peers && settings.peers->rank() != 0) continue;  // rank 0 gathered the solution
+        grids.push_back(solution.towards(scene.desc.camera.position));
         const auto& d = grids.back().dims;
         std::fprintf(stderr,
                      "lucent: mdom: object '%s': %dx%dx%d voxels, %d directions, %d moments, %d iterations%s: direct "

@@ -33,7 +33,8 @@ const std::vector<MethodEntry>& methodTable() {
         {"mdom",
          "single scattering plus multiple scattering by the modified discrete ordinates method on OpenCL, "
          "anisotropic media included (thesis ch. 5)",
-         true, false, hybrid::MultipleScattering::unavailableReason, MdomMethod::options(), MdomMethod::create},
+         true, false, hybrid::MultipleScattering::unavailableReason, MdomMethod::options(), MdomMethod::create, false,
+         true},
 #endif
     };
     return table;

@@ -32,13 +32,15 @@ size_t DomSolver::faceOffset(int face, const std::array<int, 3>& d, int directio
     return off * directions;
 }
 
-std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
+DomSolver::InnerBoundary DomSolver::innerBoundary(const DomGrid& grid) {
     const GridIndex index = grid.index();
     const auto& d = grid.dims;
-    std::vector<cl_int> faces(6 * index.count(), -1);
+    InnerBoundary out;
+    if (grid.ior == 1.0) return out;
+    if (grid.boundaryNormal.size() != grid.count()) throw Error("internal: discrete ordinates without normals");
+    out.faces.assign(6 * index.count(), -1);
     auto wanted = [&](size_t v) { return grid.extinction[v].a != 0.0f; };
     auto air = [&](size_t v) { return glm::vec3(grid.extinction[v]) == glm::vec3(0.0f); };
-    *count = 0;
     for (int k = 0; k < d[2]; ++k)
         for (int j = 0; j < d[1]; ++j)
             for (int i = 0; i < d[0]; ++i) {
@@ -47,13 +49,15 @@ std::vector<cl_int> DomSolver::innerFaces(const DomGrid& grid, int* count) {
                 for (int a = 0; a < 3; ++a) {
                     if (c[a] + 1 >= d[a]) continue;
                     const size_t u = index(i + (a == 0), j + (a == 1), k + (a == 2));
-                    if ((wanted(v) && air(u)) || (air(v) && wanted(u))) {
-                        faces[6 * v + 2 * a + 1] = *count;  // v's face to +axis is u's to -axis
-                        faces[6 * u + 2 * a] = (*count)++;
-                    }
+                    if (!(wanted(v) && air(u)) && !(air(v) && wanted(u))) continue;
+                    const int f = int(out.normals.size());
+                    out.faces[6 * v + 2 * a + 1] = f;  // v's face to +axis is u's to -axis
+                    out.faces[6 * u + 2 * a] = f;
+                    const glm::vec3 sum = grid.boundaryNormal[v] + grid.boundaryNormal[u];
+                    out.normals.push_back(glm::length(sum) > 0.0f ? glm::normalize(sum) : glm::vec3(0.0f));
                 }
             }
-    return faces;
+    return out;
 }
 
 std::vector<size_t> DomSolver::volumeBytes(int bands, bool mirrors) {
@@ -161,33 +165,22 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     // The inner boundary: per face, Fresnel's reflectance of each direction
     // leaving the medium by it, at its angle to the boundary's normal there (a
     // direction the staircase lets out but the boundary would not: kept inside).
-    int faces = 0;
-    const std::vector<cl_int> innerFace = grid.ior != 1.0 ? innerFaces(grid, &faces) : std::vector<cl_int>{};
+    const InnerBoundary inner =
+        grid.innerFace.empty() ? innerBoundary(grid) : InnerBoundary{grid.innerFace, grid.faceNormal};
+    const size_t faces = inner.normals.size();
     mirrors_ = faces > 0;
-    const size_t mirrorBytes = size_t(faces) * n * sizeof(glm::vec4);
+    const size_t mirrorBytes = faces * n * sizeof(glm::vec4);
     if (mirrors_)
         device.checkMemory(2 * mirrorBytes + mirrorBytes / 4, mirrorBytes,
                            "the inner boundary's reflections (" + std::to_string(faces) + " voxel faces)");
-    std::vector<float> fresnel(std::max<size_t>(1, size_t(faces) * n));
-    if (mirrors_) {
-        if (grid.boundaryNormal.size() != grid.count()) throw Error("internal: discrete ordinates without normals");
-        const GridIndex index = grid.index();
-        for (size_t v = 0; v < grid.count(); ++v)
-            for (int a = 0; a < 3; ++a) {
-                const int f = innerFace[6 * v + 2 * a + 1];
-                if (f < 0) continue;
-                const std::array<int, 3> c = index.cell(v);
-                const size_t u = index(c[0] + (a == 0), c[1] + (a == 1), c[2] + (a == 2));
-                const Vec3 sum = Vec3(grid.boundaryNormal[v] + grid.boundaryNormal[u]);
-                const Vec3 normal = glm::length(sum) > 0.0 ? glm::normalize(sum) : Vec3(0.0);
-                for (int i = 0; i < n; ++i) {
-                    const double cosine = glm::dot(ordinates_.directions[i], normal);
-                    fresnel[size_t(f) * n + i] = cosine > 0.0 ? float(fresnelReflectance(cosine, grid.ior)) : 1.0f;
-                }
-            }
-    }
+    std::vector<float> fresnel(std::max<size_t>(1, faces * n));
+    for (size_t f = 0; f < faces; ++f)
+        for (int i = 0; i < n; ++i) {
+            const double cosine = glm::dot(ordinates_.directions[i], Vec3(inner.normals[f]));
+            fresnel[f * n + i] = cosine > 0.0 ? float(fresnelReflectance(cosine, grid.ior)) : 1.0f;
+        }
     fresnel_ = constBuffer(cx, fresnel);
-    for (cl::Buffer& b : mirror_) b = zeroBuffer(cx, std::max<size_t>(1, size_t(faces) * n) * sizeof(glm::vec4));
+    for (cl::Buffer& b : mirror_) b = zeroBuffer(cx, std::max<size_t>(1, faces * n) * sizeof(glm::vec4));
 
     // The volumes: with a pool holding every block, all are resident from the
     // start (zeros) and what is set goes straight to the device.
@@ -199,7 +192,7 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     setVolume(queue, kExtinction, grid.extinction.data(), sizeof(glm::vec4));
     setVolume(queue, kScattering, grid.scattering.data(), sizeof(glm::vec4));
     setVolume(queue, kPhase, grid.phase.data(), sizeof(glm::vec4));
-    if (mirrors_) setVolume(queue, kInnerFace, innerFace.data(), 6 * sizeof(cl_int));
+    if (mirrors_) setVolume(queue, kInnerFace, inner.faces.data(), 6 * sizeof(cl_int));
 
     sweep_.setArg(3, yFace_);
     sweep_.setArg(4, zFace_);

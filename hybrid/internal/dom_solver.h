@@ -37,6 +37,11 @@ struct DomGrid {
     // (per voxel, the mean of the face's two voxels is taken).
     double ior = 1.0;
     std::vector<glm::vec3> boundaryNormal;
+    // A share of a larger grid (an MPI rank's) is given its inner boundary as
+    // DomSolver::innerBoundary finds it on the whole grid, cut to the share,
+    // so that faces on the share's border are kept; empty: found in this grid.
+    std::vector<cl_int> innerFace;      // [voxel][6]
+    std::vector<glm::vec3> faceNormal;  // [face]
     size_t count() const { return index().count(); }
     GridIndex index() const { return {dims}; }
 };
@@ -85,8 +90,13 @@ public:
     bool spilled() const { return pool_->spilled(); }
     // The faces of the inner boundary: [voxel][6], each voxel's faces to -x,
     // +x, -y, +y, -z and +z, numbered where one side's flux is wanted and the
-    // other is air, else -1.
-    static std::vector<cl_int> innerFaces(const DomGrid& grid, int* count);
+    // other is air, else -1; and each face's normal, the boundary's outward
+    // unit normal there (the mean of its two voxels').
+    struct InnerBoundary {
+        std::vector<cl_int> faces;
+        std::vector<glm::vec3> normals;
+    };
+    static InnerBoundary innerBoundary(const DomGrid& grid);
     // What the pool copied (zero without one).
     const BlockPool::Traffic& traffic() const;
 

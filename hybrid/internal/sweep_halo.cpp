@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/grid_index.h"
 #include "hybrid/internal/dom_solver.h"
 
 namespace lucent::hybrid {
@@ -47,6 +48,28 @@ SweepPartition partitionSweeps(const std::array<int, 3>& cells, int rank, int ra
 int sweepBlocks(const SweepPartition& part) {
     const bool shared = part.ranks[0] * part.ranks[1] > 1;
     return shared ? std::clamp(kBlocksPerStage * (part.ranks[0] + part.ranks[1] - 2), 1, part.dims()[2]) : 1;
+}
+
+std::vector<glm::vec4> gatherShares(const std::array<int, 3>& cells, std::vector<glm::vec4> mine, size_t perCell,
+                                    const Peers& peers) {
+    if (peers.size() == 1) return mine;
+    if (peers.rank() != 0) {
+        peers.send(0, &mine[0].x, mine.size() * 4);
+        return {};
+    }
+    std::vector<glm::vec4> all(GridIndex{cells}.count() * perCell);
+    for (int r = 0; r < peers.size(); ++r) {
+        const SweepPartition share = partitionSweeps(cells, r, peers.size());
+        std::vector<glm::vec4> theirs;
+        if (r == 0) {
+            theirs = std::move(mine);
+        } else {
+            theirs.resize(GridIndex{share.dims()}.count() * perCell);
+            peers.receive(r, &theirs[0].x, theirs.size() * 4);
+        }
+        putBox(all, cells, share.lo, share.hi, theirs, perCell);
+    }
+    return all;
 }
 
 SweepHalo::SweepHalo(const Peers& peers, const SweepPartition& part, int directions)

@@ -33,6 +33,11 @@ SweepPartition partitionSweeps(const std::array<int, 3>& cells, int rank, int ra
 // How many blocks of z each octant's sweep is pipelined in on this share.
 int sweepBlocks(const SweepPartition& part);
 
+// Every rank's share of a grid of `cells` (perCell values a cell, in the
+// share's own order) put together on rank 0; the others get nothing back.
+std::vector<glm::vec4> gatherShares(const std::array<int, 3>& cells, std::vector<glm::vec4> mine, size_t perCell,
+                                    const Peers& peers);
+
 // The exchange of one rank's faces during the sweeps.
 class SweepHalo {
 public:
