@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -28,8 +29,15 @@ HostBlocks::HostBlocks(size_t bytes, const std::filesystem::path& spillTo) : byt
         if (statvfs(spillTo.c_str(), &disk) != 0) throw Error(where + ": " + std::strerror(errno));
         const double free = double(disk.f_bavail) * double(disk.f_frsize);
         if (free < double(bytes_)) throw Error(where + ": the disk has " + mib(size_t(free)) + " free");
-        // An unnamed file (O_TMPFILE): nothing to clean up, nothing another process can open.
+        // An unnamed file (O_TMPFILE): nothing to clean up, nothing another
+        // process can open. Where the file system cannot make one, a file
+        // named by mkstemp and unlinked at once.
         fd_ = open(spillTo.c_str(), O_TMPFILE | O_RDWR | O_EXCL | O_CLOEXEC, 0600);
+        if (fd_ < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL)) {
+            std::string name = (spillTo / "lucent-blocks-XXXXXX").string();
+            fd_ = mkostemp(name.data(), O_CLOEXEC);
+            if (fd_ >= 0) unlink(name.c_str());
+        }
         if (fd_ < 0) throw Error(where + ": " + std::strerror(errno));
         if (ftruncate(fd_, off_t(bytes_)) != 0) {
             const int e = errno;
