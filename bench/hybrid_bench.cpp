@@ -224,6 +224,14 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
     }
 }
 
+hybrid::MdomSettings mdomSettings(int grid, int directions, int moments) {
+    hybrid::MdomSettings s;
+    s.resolution = grid;
+    s.directions = directions;
+    s.bands = int(std::lround(std::sqrt(double(moments))));
+    return s;
+}
+
 // Thesis Table 5.1: the sphere lit by a point light, N directions, a fixed
 // number of scattering iterations; time per iteration and per octant sweep,
 // device memory, and after each iteration the share of the converged light
@@ -248,10 +256,7 @@ void mdomSpeed(ResultsRecord& out, const std::vector<int>& grids, const std::vec
     };
     for (int grid : grids)
         for (int n : directions) {
-            hybrid::MdomSettings s;
-            s.resolution = grid;
-            s.directions = n;
-            s.bands = int(std::lround(std::sqrt(double(moments))));
+            hybrid::MdomSettings s = mdomSettings(grid, n, moments);
             s.tolerance = 1e-4;
             const double converged = power(solver.solve(object, scene.lights, s));
             s.maxIterations = iterations;
@@ -299,10 +304,7 @@ void mdomPool(ResultsRecord& out, const std::vector<int>& grids, const std::vect
     const VolumeObject object(scene.objects[0], warnings);
     for (int grid : grids)
         for (int moments : momentCounts) {
-            hybrid::MdomSettings s;
-            s.resolution = grid;
-            s.directions = directions;
-            s.bands = int(std::lround(std::sqrt(double(moments))));
+            hybrid::MdomSettings s = mdomSettings(grid, directions, moments);
             s.maxIterations = iterations;
             s.tolerance = 0.0;  // exactly `iterations`
             const hybrid::GridShape shape = hybrid::gridShapeFor(object.mesh().bounds(), grid);

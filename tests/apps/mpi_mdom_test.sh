@@ -8,17 +8,8 @@
 # the ranks sweep ends the run with no output, never a hang.
 #   mpi_mdom_test.sh LUCENT SOURCE_DIR
 set -euo pipefail
-lucent=$(realpath "$1")
-source_dir=$2
-here=$(dirname "$(realpath "$0")")
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-cp "$source_dir/models/sphere.obj" "$scratch/"
-cd "$scratch"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi=(mpirun --quiet --oversubscribe)
-fail() { echo "FAIL: $*"; exit 1; }
-source "$here/mpi_kill_rank.sh"
+source "$(dirname "$(realpath "$0")")/mpi_test_setup.sh" "$@"
+cp "$source_dir/models/sphere.obj" .
 
 cat > glass.json << 'JSON'
 {"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 40, "height": 36},

@@ -5,18 +5,8 @@
 # rank killed outright ends the run with no output, never a hang.
 #   mpi_render_test.sh LUCENT SOURCE_DIR
 set -euo pipefail
-lucent=$(realpath "$1")
-source_dir=$2
-here=$(dirname "$(realpath "$0")")
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-cp "$source_dir/models/sphere.json" "$source_dir/models/sphere.obj" "$scratch/"
-cd "$scratch"
-# CI runs as root in a container; two cores hold four ranks only oversubscribed.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi=(mpirun --quiet --oversubscribe)
-fail() { echo "FAIL: $*"; exit 1; }
-source "$here/mpi_kill_rank.sh"
+source "$(dirname "$(realpath "$0")")/mpi_test_setup.sh" "$@"
+cp "$source_dir/models/sphere.json" "$source_dir/models/sphere.obj" .
 
 for method in path reference; do
   args=(render sphere.json --method "$method" --width 40 --height 36 --seed 3)

@@ -7,16 +7,7 @@
 # rank killed mid-sweep ends the run with no output, never a hang.
 #   mpi_transport_test.sh LUCENT SOURCE_DIR
 set -euo pipefail
-lucent=$(realpath "$1")
-source_dir=$2
-here=$(dirname "$(realpath "$0")")
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-cd "$scratch"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mpi=(mpirun --quiet --oversubscribe)
-fail() { echo "FAIL: $*"; exit 1; }
-source "$here/mpi_kill_rank.sh"
+source "$(dirname "$(realpath "$0")")/mpi_test_setup.sh" "$@"
 
 # Kobayashi's problem 1 with 50% scattering (three reflective faces) on a
 # coarser grid: marched, and swept with two bands and anisotropic scattering.
