@@ -69,7 +69,7 @@ public:
     // iteration's delay); the others are vacuum, or a neighbour's when halo
     // (owned by the caller, outliving the solver) shares the sweeps with the
     // ranks of an MPI job: the grid is then this rank's share.
-    // A pool (share > 0) takes neither reflective faces nor a halo.
+    // A pool that cuts the grid into blocks takes neither reflective faces nor a halo.
     DomSolver(const ClDevice& device, const DomGrid& grid, int directions, int bands, const BoundaryFlags& reflective,
               SweepHalo* halo = nullptr, const DomPool& pool = {});
     ~DomSolver();
