@@ -1,7 +1,8 @@
 #pragma once
 // lucent render under mpirun (docs/mpi.md): every rank parses and loads the
 // scene, the methods that split rows (path, reference) render their share of
-// the rows, and rank 0 sums the shares and writes the image. Before anything is
+// the rows, and rank 0 sums the shares and writes the image; mdom shares its
+// sweeps, and rank 0's image is the frame. Before anything is
 // written every rank says whether it failed: a failure anywhere ends the job
 // with a non-zero exit, one error line and no output, never a rank left
 // waiting. The lowest failing rank prints the line and exits 1; the others

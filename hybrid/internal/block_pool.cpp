@@ -115,12 +115,6 @@ char* BlockPool::hostOf(int b, int volume) {
     return host_.data() + at;
 }
 
-size_t BlockPool::deviceBytes(int edge, const std::vector<size_t>& volumeBytes, int slots) {
-    size_t perVoxel = 0;
-    for (size_t b : volumeBytes) perVoxel += b;
-    return size_t(slots) * size_t(edge) * edge * edge * perVoxel;
-}
-
 int BlockPool::victim() {
     // The thesis's order of preference (5.2.2): free, clean and not used in
     // this wavefront, dirty and not used, and only then one in use; ties go

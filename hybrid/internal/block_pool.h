@@ -94,8 +94,6 @@ public:
         double bytesUp = 0, bytesDown = 0;
     };
     const Traffic& traffic() const { return traffic_; }
-    // Device bytes of a pool of `slots` blocks of `edge`^3 voxels.
-    static size_t deviceBytes(int edge, const std::vector<size_t>& volumeBytes, int slots);
 
 private:
     struct Slot {
