@@ -27,6 +27,11 @@ std::array<int, 3> BlockTiling::lo(int b) const {
     return {c[0] * edge_, c[1] * edge_, c[2] * edge_};
 }
 
+std::array<int, 3> BlockTiling::hi(int b) const {
+    const std::array<int, 3> l = lo(b), d = dims(b);
+    return {l[0] + d[0], l[1] + d[1], l[2] + d[2]};
+}
+
 std::array<int, 3> BlockTiling::dims(int b) const {
     const std::array<int, 3> l = lo(b);
     return {std::min(edge_, dims_[0] - l[0]), std::min(edge_, dims_[1] - l[1]), std::min(edge_, dims_[2] - l[2])};
@@ -50,35 +55,6 @@ std::vector<std::vector<int>> BlockTiling::wavefronts(int octant) const {
         out[w].push_back(b);
     }
     return out;
-}
-
-namespace {
-
-// Block b's rows of x, with `copy(gridAt, blockAt, bytes)` for each.
-template <typename Copy>
-void forRows(const std::array<int, 3>& grid, const std::array<int, 3>& lo, const std::array<int, 3>& d, size_t bytes,
-             Copy copy) {
-    const size_t row = size_t(d[0]) * bytes;
-    for (int k = 0; k < d[2]; ++k)
-        for (int j = 0; j < d[1]; ++j) {
-            const size_t g = size_t(lo[0]) + size_t(grid[0]) * (size_t(lo[1] + j) + size_t(grid[1]) * (lo[2] + k));
-            const size_t l = size_t(d[0]) * (size_t(j) + size_t(d[1]) * k);
-            copy(g * bytes, l * bytes, row);
-        }
-}
-
-}  // namespace
-
-void BlockTiling::toBlock(int b, const void* grid, void* block, size_t bytes) const {
-    forRows(dims_, lo(b), dims(b), bytes, [&](size_t g, size_t l, size_t n) {
-        std::memcpy(static_cast<char*>(block) + l, static_cast<const char*>(grid) + g, n);
-    });
-}
-
-void BlockTiling::fromBlock(int b, const void* block, void* grid, size_t bytes) const {
-    forRows(dims_, lo(b), dims(b), bytes, [&](size_t g, size_t l, size_t n) {
-        std::memcpy(static_cast<char*>(grid) + g, static_cast<const char*>(block) + l, n);
-    });
 }
 
 BlockPool::BlockPool(const cl::Context& context, const BlockTiling& tiling, std::vector<size_t> volumeBytes, int slots,

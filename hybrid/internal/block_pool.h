@@ -31,7 +31,9 @@ public:
     std::array<int, 3> coords(int b) const;
     // The block at block coordinates c, or -1 past the grid.
     int at(const std::array<int, 3>& c) const;
+    // Block b is the box [lo(b), hi(b)) of the grid (core/grid_index.h's boxOf).
     std::array<int, 3> lo(int b) const;
+    std::array<int, 3> hi(int b) const;
     std::array<int, 3> dims(int b) const;
     size_t voxels(int b) const;
     // The largest block's dimensions.
@@ -41,10 +43,6 @@ public:
     // sweep sum to one value. A block's upwind neighbours are all in earlier
     // wavefronts, and the blocks of one wavefront are independent.
     std::vector<std::vector<int>> wavefronts(int octant) const;
-
-    // Copies `perVoxel` values of `bytes` each between the grid's order and block b's.
-    void toBlock(int b, const void* grid, void* block, size_t bytes) const;
-    void fromBlock(int b, const void* block, void* grid, size_t bytes) const;
 
 private:
     std::array<int, 3> dims_, count_;

@@ -88,8 +88,10 @@ size_t DomSolver::largestBufferFor(const std::array<int, 3>& dims, int bands, co
 
 size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
     if (!pooled(dims, pool)) return 0;
+    // With the inner faces a refracting object keeps: an upper bound, as the
+    // memory check sees the grid's shape only, not whether the object refracts.
     size_t perVoxel = 0;
-    for (size_t b : volumeBytes(bands, false)) perVoxel += b;
+    for (size_t b : volumeBytes(bands, true)) perVoxel += b;
     return GridIndex{dims}.count() * perVoxel;
 }
 
@@ -189,10 +191,10 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     const cl::CommandQueue& queue = device.marchQueue;
     if (pool_->holdsAll())
         for (int b = 0; b < tiling_.blocks(); ++b) pool_->acquire(queue, b, 0, ~0u);
-    setVolume(queue, kExtinction, grid.extinction.data(), sizeof(glm::vec4));
-    setVolume(queue, kScattering, grid.scattering.data(), sizeof(glm::vec4));
-    setVolume(queue, kPhase, grid.phase.data(), sizeof(glm::vec4));
-    if (mirrors_) setVolume(queue, kInnerFace, inner.faces.data(), 6 * sizeof(cl_int));
+    setVolume(queue, kExtinction, grid.extinction, 1);
+    setVolume(queue, kScattering, grid.scattering, 1);
+    setVolume(queue, kPhase, grid.phase, 1);
+    if (mirrors_) setVolume(queue, kInnerFace, inner.faces, 6);
 
     sweep_.setArg(3, yFace_);
     sweep_.setArg(4, zFace_);
@@ -210,22 +212,19 @@ DomSolver::~DomSolver() = default;
 
 const BlockPool::Traffic& DomSolver::traffic() const { return pool_->traffic(); }
 
-void DomSolver::setVolume(const cl::CommandQueue& queue, Volume volume, const void* values, size_t bytes) {
+template <typename T>
+void DomSolver::setVolume(const cl::CommandQueue& queue, Volume volume, const std::vector<T>& values, size_t perCell) {
     if (tiling_.blocks() == 1) {
-        pool_->set(queue, 0, volume, values);
+        pool_->set(queue, 0, volume, values.data());
         return;
     }
-    std::vector<char> block(tiling_.voxels(0) * bytes);
-    for (int b = 0; b < tiling_.blocks(); ++b) {
-        block.resize(tiling_.voxels(b) * bytes);
-        tiling_.toBlock(b, values, block.data(), bytes);
-        pool_->set(queue, b, volume, block.data());
-    }
+    for (int b = 0; b < tiling_.blocks(); ++b)
+        pool_->set(queue, b, volume, boxOf(values, grid_.dims, tiling_.lo(b), tiling_.hi(b), perCell).data());
 }
 
 void DomSolver::setSource(cl::CommandQueue& queue, const std::vector<glm::vec4>& source) {
     if (source.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates source of wrong size");
-    setVolume(queue, kSource, source.data(), moments_ * sizeof(glm::vec4));
+    setVolume(queue, kSource, source, size_t(moments_));
 }
 
 Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
@@ -262,7 +261,7 @@ Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
 
 void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
     if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
-    setVolume(queue, kFlux, flux.data(), moments_ * sizeof(glm::vec4));
+    setVolume(queue, kFlux, flux, size_t(moments_));
     const Rgb power = scatterGeneration(queue);  // generation zero's, as iterate() measures each generation
     total_power_ += power;
     previous_power_ = power;
@@ -423,7 +422,7 @@ std::vector<glm::vec4> DomSolver::totalFlux(cl::CommandQueue& queue) {
     for (int b = 0; b < tiling_.blocks(); ++b) {
         block.resize(tiling_.voxels(b) * moments_);
         pool_->get(queue, b, kTotal, block.data());
-        tiling_.fromBlock(b, block.data(), out.data(), moments_ * sizeof(glm::vec4));
+        putBox(out, grid_.dims, tiling_.lo(b), tiling_.hi(b), block, size_t(moments_));
     }
     return out;
 }

@@ -143,8 +143,10 @@ private:
     // The volumes each block keeps.
     enum Volume { kExtinction, kScattering, kPhase, kInnerFace, kSource, kFlux, kLastFlux, kTotal };
     static std::vector<size_t> volumeBytes(int bands, bool mirrors);
-    // The grid's values of a volume (grid order), block by block into the pool.
-    void setVolume(const cl::CommandQueue& queue, Volume volume, const void* values, size_t bytes);
+    // The grid's values of a volume (grid order, perCell values per voxel),
+    // block by block into the pool.
+    template <typename T>
+    void setVolume(const cl::CommandQueue& queue, Volume volume, const std::vector<T>& values, size_t perCell);
     // One octant's sweep of block b.
     void sweepBlock(cl::CommandQueue& queue, int octant, int b);
     // The radiance the blocks upstream left by the faces block b enters by,

@@ -12,6 +12,7 @@
 
 #include "core/spherical_harmonics.h"
 #include "core/error.h"
+#include "core/grid_index.h"
 #include "hybrid/internal/block_pool.h"
 #include "hybrid/internal/host_blocks.h"
 #include "hybrid/internal/cl_device.h"
@@ -58,13 +59,13 @@ TEST(BlockPool, BlocksHoldTheGridsValuesInTheirOwnOrder) {
     std::iota(grid.begin(), grid.end(), 0);
     size_t seen = 0;
     for (int b = 0; b < tiling.blocks(); ++b) {
-        std::vector<int> block(tiling.voxels(b));
-        tiling.toBlock(b, grid.data(), block.data(), sizeof(int));
         const auto lo = tiling.lo(b), d = tiling.dims(b);
+        const std::vector<int> block = boxOf(grid, dims, lo, tiling.hi(b));
+        ASSERT_EQ(block.size(), tiling.voxels(b));
         // The block's first and last voxels are its corners in the grid.
         EXPECT_EQ(block.front(), lo[0] + dims[0] * (lo[1] + dims[1] * lo[2]));
         EXPECT_EQ(block.back(), lo[0] + d[0] - 1 + dims[0] * (lo[1] + d[1] - 1 + dims[1] * (lo[2] + d[2] - 1)));
-        tiling.fromBlock(b, block.data(), back.data(), sizeof(int));
+        putBox(back, dims, lo, tiling.hi(b), block);
         seen += block.size();
     }
     EXPECT_EQ(seen, grid.size());
