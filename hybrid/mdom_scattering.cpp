@@ -35,8 +35,8 @@ size_t MdomScattering::bytesFor(const std::array<int, 3>& dims, int directions, 
            voxels * (4 * sizeof(glm::vec4) + sizeof(cl_int));
 }
 
-size_t MdomScattering::poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool) {
-    return DomSolver::hostBytesFor(dims, bands, DomPool(devicePool));
+size_t MdomScattering::poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool, bool refracts) {
+    return DomSolver::hostBytesFor(dims, bands, DomPool(devicePool), refracts);
 }
 
 ScatteringGrid MdomSolution::towards(const Vec3& eye) const {
@@ -343,12 +343,12 @@ namespace {
 // directory (TMPDIR). The host keeps the source it uploads and the moments it
 // reads back (M float4 each per voxel) and the materials (4 float4): 3.78 GB
 // peak measured at 128^3, M = 16, against the device's 2.35 GB.
-DomPool poolFor(const ClDevice& device, const GridShape& shape, const MdomSettings& s, const std::string& what,
-                MdomStats& stats) {
+DomPool poolFor(const ClDevice& device, const GridShape& shape, const MdomSettings& s, bool refracts,
+                const std::string& what, MdomStats& stats) {
     DomPool pool(s.devicePool);
     const size_t deviceBytes = MdomScattering::bytesFor(shape.dims, s.directions, s.bands, s.devicePool);
     const size_t hostBytes = shape.count() * size_t(2 * s.bands * s.bands + 4) * sizeof(glm::vec4);
-    const size_t blockBytes = DomSolver::hostBytesFor(shape.dims, s.bands, pool);
+    const size_t blockBytes = DomSolver::hostBytesFor(shape.dims, s.bands, pool, refracts);
     const size_t needed = hostBytes + blockBytes + (device.sharesHostMemory() ? deviceBytes : 0);
     if (blockBytes > 0 && needed > ClDevice::hostMemoryAvailable(needed)) {
         std::error_code error;
@@ -421,7 +421,7 @@ std::unique_ptr<MdomProgress> MdomScattering::prepare(const VolumeObject& object
     stats.device = device.name();
     const int ranks = progress->shared() ? s.peers->size() : 1;
     progress->part = partitionSweeps(shape.dims, ranks > 1 ? s.peers->rank() : 0, ranks);
-    const DomPool pool = poolFor(device, shape, s, what, stats);
+    const DomPool pool = poolFor(device, shape, s, object.desc().medium.ior != 1.0, what, stats);
     if (ranks > 1 && DomSolver::pooled(shape.dims, pool))
         throw Error(
             "--device-pool does not yet combine with MPI ranks: each rank's share of the voxels is swept "

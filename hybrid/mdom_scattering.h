@@ -123,8 +123,9 @@ public:
     std::string deviceName() const;
     // Device memory a solve on a grid of these dimensions takes.
     static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, double devicePool = 0.0);
-    // Host memory the blocks of a device pool take (0 without one).
-    static size_t poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool);
+    // Host memory the blocks of a device pool take (0 without one), for an
+    // object whose boundary refracts or not.
+    static size_t poolHostBytes(const std::array<int, 3>& dims, int bands, double devicePool, bool refracts);
 
     // afterIteration(i, solution): the solution with the generations so far
     // (thesis 5.3.3: each iteration's image is available); called only when

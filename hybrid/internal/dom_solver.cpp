@@ -86,12 +86,10 @@ size_t DomSolver::largestBufferFor(const std::array<int, 3>& dims, int bands, co
     return size_t(d[0]) * d[1] * d[2] * bands * bands * sizeof(glm::vec4);
 }
 
-size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool) {
+size_t DomSolver::hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool, bool refracts) {
     if (!pooled(dims, pool)) return 0;
-    // With the inner faces a refracting object keeps: an upper bound, as the
-    // memory check sees the grid's shape only, not whether the object refracts.
     size_t perVoxel = 0;
-    for (size_t b : volumeBytes(bands, true)) perVoxel += b;
+    for (size_t b : volumeBytes(bands, refracts)) perVoxel += b;
     return GridIndex{dims}.count() * perVoxel;
 }
 

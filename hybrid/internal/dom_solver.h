@@ -82,7 +82,9 @@ public:
     static size_t bytesFor(const std::array<int, 3>& dims, int directions, int bands, bool shared = false,
                            const DomPool& pool = {});
     static size_t largestBufferFor(const std::array<int, 3>& dims, int bands, const DomPool& pool = {});
-    static size_t hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool);
+    // `refracts`: the object's boundary reflects (ior other than 1), so the
+    // blocks keep its inner faces too.
+    static size_t hostBytesFor(const std::array<int, 3>& dims, int bands, const DomPool& pool, bool refracts);
     // Whether the pool cuts the grid into blocks, and how many the device holds (1 without).
     static bool pooled(const std::array<int, 3>& dims, const DomPool& pool);
     static int slotsFor(const std::array<int, 3>& dims, const DomPool& pool);

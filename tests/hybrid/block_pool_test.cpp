@@ -144,7 +144,13 @@ TEST(BlockPool, HoldingEveryBlockIsTheWholeGrid) {
     EXPECT_EQ(DomSolver::slotsFor({64, 64, 64}, {0.85}), 7);
     EXPECT_EQ(DomSolver::slotsFor({128, 128, 128}, {0.05}), 4);  // of 64
     EXPECT_EQ(DomSolver::slotsFor({128, 128, 128}, {1e-9}), 1);  // one block at least
-    EXPECT_EQ(DomSolver::hostBytesFor({64, 64, 64}, 4, {1.0}), 0u);
+    EXPECT_EQ(DomSolver::hostBytesFor({64, 64, 64}, 4, {1.0}, true), 0u);
+    // Pooled, per voxel: three float4 materials and four volumes of 16 float4
+    // moments (source, flux, last flux, total), and a refracting object's six
+    // inner faces (an int each).
+    const size_t voxels = 64 * 64 * 64;
+    EXPECT_EQ(DomSolver::hostBytesFor({64, 64, 64}, 4, {0.5}, false), voxels * (3 * 16 + 4 * 16 * 16));
+    EXPECT_EQ(DomSolver::hostBytesFor({64, 64, 64}, 4, {0.5}, true), voxels * (3 * 16 + 4 * 16 * 16 + 6 * 4));
 }
 
 TEST(BlockPool, SpillingWhereNoFileCanBeMadeIsOneClearError) {
