@@ -338,7 +338,7 @@ void mdomPool(ResultsRecord& out, const std::vector<int>& grids, const std::vect
                 }
                 const size_t device = hybrid::MdomScattering::bytesFor(shape.dims, directions, s.bands, s.devicePool);
                 const size_t host = hybrid::MdomScattering::poolHostBytes(shape.dims, s.bands, s.devicePool,
-                                                                           object.desc().medium.ior != 1.0);
+                                                                          object.desc().medium.ior != 1.0);
                 out.print("| %d | %d | %s | %d of %d%s | %.2f | %s | %.2f | %.2f | %zu | %zu | %s |\n", grid, moments,
                           name.c_str(), stats.poolSlots, stats.poolBlocks, stats.spilled ? ", spilled to a file" : "",
                           t, referenceTime > 0.0 ? formatted("%.2f", t / referenceTime).c_str() : "",
