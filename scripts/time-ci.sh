@@ -57,8 +57,8 @@ text="# time-ci.sh
 - date: $(date -u '+%Y-%m-%d %H:%M UTC')
 
 \`.ci/run\` on a fresh clone: the build from nothing and every test, then the
-sanitizer build and every test under ASan and UBSan. CI's limit is 90 minutes;
-the project's goal is under 60.
+sanitizer build and every test but the accuracy tier under ASan and UBSan
+(scripts/sanitize.sh). CI's limit is 90 minutes; the project's goal is under 60.
 
 | step | what it runs | time (min) | tests |
 |---|---|---:|---:|
