@@ -31,9 +31,9 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # The accuracy tier stays out: a test whose name says it meets (or is within) a
 # goal renders a method's image and the reference at full size to measure the
 # error, which the sanitizers cannot change. Its code runs here at test sizes
-# in the other tiers; the accuracy tests run in scripts/test.sh. They are a
-# quarter of this suite's time (586 s of 2 296 s measured on 2026-12-05), and
-# CI's goal is under 60 minutes for both suites with both builds.
+# in the other tiers; the accuracy tests run in scripts/test.sh. They are about
+# a quarter of this suite's time, and CI's goal is under 60 minutes for both
+# suites with both builds (docs/results/ci.md).
 accuracy_tier='(Meets?|Within)[A-Za-z]*Goal'
 
 # Every other test in one run, so that both cores stay busy to the end. Leak checks
