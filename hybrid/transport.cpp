@@ -188,7 +188,8 @@ void TransportSolver::Impl::prepare() {
     solver.emplace(device, mine.grid, p.directions, p.bands, reflective, halo ? &*halo : nullptr);
     if (r.uncollidedMarched)  // the first-collision source: generation zero integrated, the sweeps carry the rest
         solver->setUncollidedFlux(device.marchQueue,
-                                  uncollidedFlux(whole.grid, whole.density, p.bands, p.reflective, part.lo, part.hi));
+                                  uncollidedFlux(whole.grid, whole.density, p.bands, p.reflective, part.lo, part.hi),
+                                  mine.source);
     else
         solver->setSource(device.marchQueue, mine.source);
 }

@@ -17,6 +17,7 @@ constexpr int kPartials = 1024;
 
 template <typename T>
 cl::Buffer constBuffer(const cl::Context& cx, const std::vector<T>& values) {
+    if (values.empty()) return cl::Buffer(cx, CL_MEM_READ_ONLY, sizeof(T));
     return cl::Buffer(cx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(values.size(), 1) * sizeof(T),
                       const_cast<T*>(values.data()));
 }
@@ -131,6 +132,8 @@ DomSolver::DomSolver(const ClDevice& device, const DomGrid& grid, int directions
     scatter_ = cl::Kernel(program_, "dom_scatter");
     power_ = cl::Kernel(program_, "dom_power");
     add_ = cl::Kernel(program_, "dom_add_scaled");
+    gatherZero_ = cl::Kernel(program_, "dom_gather_zero");
+    takeShape_ = cl::Kernel(program_, "dom_take_shape");
 
     // The directions' moments, weights and voxel crossings (edges may differ per axis).
     std::vector<float> ylm(size_t(n) * moments_), weights(n), crossing(size_t(k) * 27);
@@ -253,16 +256,38 @@ Rgb DomSolver::scatterGeneration(cl::CommandQueue& queue) {
     Rgb sum(0.0);
     for (const glm::vec4& p : partial)
         for (int c = 0; c < 3; ++c) sum[c] += p[c];
-    if (halo_) halo_->sum(&sum[0], 3);
     return sum;
 }
 
-void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux) {
+void DomSolver::setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux,
+                                  const std::vector<glm::vec4>& sources) {
     if (flux.size() != grid_.count() * moments_) throw Error("internal: discrete ordinates flux of wrong size");
     setVolume(queue, kFlux, flux, size_t(moments_));
-    const Rgb power = scatterGeneration(queue);  // generation zero's, as iterate() measures each generation
-    total_power_ += power;
-    previous_power_ = power;
+    if (!sources.empty()) {
+        if (sources.size() != flux.size() || tiling_.blocks() > 1)
+            throw Error("internal: a first-collided source of wrong size, or pooled");
+        std::vector<cl_int> at;
+        std::vector<glm::vec4> shape;
+        SourcesShape s;
+        for (size_t v = 0; v < grid_.count(); ++v) {
+            const glm::vec4 q = sources[v * moments_];
+            if (q.r <= 0.0f && q.g <= 0.0f && q.b <= 0.0f) continue;
+            at.push_back(cl_int(v));
+            shape.push_back(q);
+            for (int c = 0; c < 3; ++c) s.total[c] += q[c];
+        }
+        s.voxels = at.size();
+        const cl::Context cx = queue.getInfo<CL_QUEUE_CONTEXT>();
+        s.at = constBuffer(cx, at);
+        s.shape = constBuffer(cx, shape);
+        s.gathered = zeroBuffer(cx, std::max<size_t>(1, at.size()) * sizeof(glm::vec4));
+        s.flux = constBuffer(cx, flux);
+        sourcesShape_ = std::move(s);
+    }
+    // Generation zero's light, as iterate() measures each generation; summed
+    // over the ranks in the first step, since a failure here must reach the
+    // ranks before they talk (transport.h).
+    uncollidedPower_ = scatterGeneration(queue);
     queue.finish();
 }
 
@@ -337,7 +362,44 @@ void DomSolver::sweepBlock(cl::CommandQueue& queue, int octant, int b) {
     if (tiling_.blocks() > 1) keepFaces(queue, octant, b);
 }
 
+void DomSolver::takeSourcesShape(cl::CommandQueue& queue) {
+    SourcesShape& s = *sourcesShape_;
+    std::vector<glm::vec4> zero(s.voxels);
+    const int slot = pool_->acquire(queue, 0, 1u << kSource | 1u << kFlux);
+    cl::Buffer& source = pool_->buffer(slot, kSource);
+    if (s.voxels > 0) {
+        gatherZero_.setArg(0, source);
+        gatherZero_.setArg(1, s.at);
+        gatherZero_.setArg(2, s.gathered);
+        queue.enqueueNDRangeKernel(gatherZero_, cl::NullRange, cl::NDRange(s.voxels));
+        queue.enqueueReadBuffer(s.gathered, CL_TRUE, 0, s.voxels * sizeof(glm::vec4), zero.data());
+    }
+    Rgb sum(0.0);
+    for (const glm::vec4& z : zero)
+        for (int c = 0; c < 3; ++c) sum[c] += z[c];
+    if (halo_) {
+        if (!s.summed) halo_->sum(&s.total[0], 3);
+        halo_->sum(&sum[0], 3);
+    }
+    s.summed = true;
+    cl_float4 c{};
+    for (int i = 0; i < 3; ++i) c.s[i] = s.total[i] > 0.0 ? float(sum[i] / s.total[i]) : 0.0f;
+    if (s.voxels > 0) {
+        takeShape_.setArg(0, source);
+        takeShape_.setArg(1, s.at);
+        takeShape_.setArg(2, s.shape);
+        takeShape_.setArg(3, c);
+        queue.enqueueNDRangeKernel(takeShape_, cl::NullRange, cl::NDRange(s.voxels));
+    }
+    add_.setArg(0, pool_->buffer(slot, kFlux));
+    add_.setArg(1, s.flux);
+    add_.setArg(2, c);
+    queue.enqueueNDRangeKernel(add_, cl::NullRange, cl::NDRange(tiling_.voxels(0)));
+    pool_->written(slot, 1u << kSource | 1u << kFlux);
+}
+
 Rgb DomSolver::iterate(cl::CommandQueue& queue) {
+    if (sourcesShape_) takeSourcesShape(queue);
     sweep_.setArg(5, boundary_[swaps_ % 2]);
     sweep_.setArg(6, boundary_[(swaps_ + 1) % 2]);
     sweep_.setArg(17, mirror_[swaps_ % 2]);
@@ -351,7 +413,9 @@ Rgb DomSolver::iterate(cl::CommandQueue& queue) {
         }
     }
     ++swaps_;
-    return scatterGeneration(queue);
+    Rgb power = scatterGeneration(queue);
+    if (halo_) halo_->sum(&power[0], 3);
+    return power;
 }
 
 void DomSolver::addTail(cl::CommandQueue& queue, const Rgb& factor) {
@@ -368,6 +432,12 @@ void DomSolver::addTail(cl::CommandQueue& queue, const Rgb& factor) {
 
 bool DomSolver::step(cl::CommandQueue& queue, double tolerance) {
     if (run_.converged) return false;
+    if (uncollidedPower_) {
+        if (halo_) halo_->sum(&(*uncollidedPower_)[0], 3);
+        total_power_ += *uncollidedPower_;
+        previous_power_ = *uncollidedPower_;
+        uncollidedPower_.reset();
+    }
     const Rgb power = iterate(queue);
     total_power_ += power;
     const int i = run_.iterations++;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -108,7 +109,14 @@ public:
     // computed outside the sweeps (the first-collision source method). They
     // join the total as generation zero and scatter into the first source, so
     // that the sweeps carry only light that has collided.
-    void setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux);
+    // With `sources`, the sources' moments as setSource takes them, the light
+    // that collides where the sources are is taken out of the sweeps too (a
+    // first-collided source): in every generation, c times the sources, c
+    // such that it holds all the scattering source's zero moment in the source
+    // voxels, is no longer swept, and its flux is c times `flux`. The sweeps
+    // carry only what differs from the sources' shape there. Not pooled.
+    void setUncollidedFlux(cl::CommandQueue& queue, const std::vector<glm::vec4>& flux,
+                           const std::vector<glm::vec4>& sources = {});
     // One iteration: eight octant sweeps of the current source, the generation's
     // flux added to the total and scattered into the next source. Returns the
     // generation's summed zero moments per channel (how much light it carried).
@@ -157,8 +165,11 @@ private:
     void keepFaces(cl::CommandQueue& queue, int octant, int b);
     // The generation in the flux volume joins the total and scatters into the
     // next source; it becomes the last flux, and the flux is cleared. Returns
-    // the generation's summed zero moments (over the ranks when shared).
+    // the generation's summed zero moments (this rank's).
     Rgb scatterGeneration(cl::CommandQueue& queue);
+    // The first-collided source's share of this generation's source: taken
+    // out of it, its flux put in the flux volume before the sweeps add theirs.
+    void takeSourcesShape(cl::CommandQueue& queue);
 
     DomGrid grid_;
     Ordinates ordinates_;
@@ -167,8 +178,18 @@ private:
     int swaps_ = 0;
     Run run_;
     Rgb total_power_{0.0}, previous_power_{0.0};
+    std::optional<Rgb> uncollidedPower_;  // this rank's, until the first step sums it over the ranks
     cl::Program program_;
-    cl::Kernel sweep_, scatter_, power_, add_;
+    cl::Kernel sweep_, scatter_, power_, add_, gatherZero_, takeShape_;
+    // The first-collided source: the source voxels, the sources' zero moments
+    // there and their sum (over the ranks), and the uncollided flux.
+    struct SourcesShape {
+        size_t voxels = 0;
+        Rgb total{0.0};
+        bool summed = false;
+        cl::Buffer at, shape, gathered, flux;
+    };
+    std::optional<SourcesShape> sourcesShape_;
     BlockTiling tiling_;
     std::unique_ptr<BlockPool> pool_;
     std::array<std::vector<std::vector<int>>, 8> order_;  // per octant, the block wavefronts

@@ -215,6 +215,19 @@ kernel void dom_add_scaled(global float4* total, global const float4* flux, floa
     for (int m = 0; m < DOM_M; ++m) total[v * DOM_M + m] += factor * flux[v * DOM_M + m];
 }
 
+// The first-collided source (dom_solver.h, setUncollidedFlux): the zero
+// moments of the scattering source in the source voxels, for the host to sum,
+// and the part shaped like the sources, c times their zero moments, taken out.
+kernel void dom_gather_zero(global const float4* source, global const int* voxels, global float4* out) {
+    const size_t i = get_global_id(0);
+    out[i] = source[(size_t)voxels[i] * DOM_M];
+}
+
+kernel void dom_take_shape(global float4* source, global const int* voxels, global const float4* shape, float4 c) {
+    const size_t i = get_global_id(0);
+    source[(size_t)voxels[i] * DOM_M] -= c * shape[i];
+}
+
 // Partial sums of the zero moments (the convergence measure), one per work
 // item over a strided share of the voxels.
 kernel void dom_power(global const float4* flux, global float4* partial, int voxels) {
