@@ -3,14 +3,15 @@
 // and memory. Problem 1's truths are the published fluxes (bench/
 // kobayashi_reference.h); the absorbers of problems 2 and 3 are checked against
 // the uncollided flux integrated without cells (bench/uncollided_quadrature.h);
-// the scattering cases of problems 2 and 3 have no truth here and are run and
-// recorded only.
+// their scattering cases against that plus the collided flux by our own Monte
+// Carlo (bench/collided_monte_carlo.h), whose standard error is shown.
 //
 // --directions and --cell change the problem files' direction sets and cells,
 // to see which of the two an error follows (docs/transport.md).
 //
 //   build/bin/lucent-bench-transport [--problems 1,2,3] [--cases absorber,scatter] [--details] [--repeats 3]
-//                                    [--directions 24,48,...] [--cell CM] [--record docs/results/kobayashi.md]
+//                                    [--directions 24,48,...] [--cell CM] [--histories 1000000]
+//                                    [--record docs/results/kobayashi.md]
 #include <CLI/CLI.hpp>
 
 #include <sys/resource.h>
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/collided_monte_carlo.h"
 #include "bench/kobayashi_reference.h"
 #include "bench/results_record.h"
 #include "bench/uncollided_quadrature.h"
@@ -43,16 +45,31 @@ double peakResidentMiB() {
     return usage.ru_maxrss / 1024.0;
 }
 
-// The truth at each point of problem `n`'s case, or an empty list where there is none.
-std::vector<double> truths(int n, const std::string& which, const TransportProblem& p) {
-    std::vector<double> t;
+// The truth at each point of problem `n`'s case (none where there is none),
+// and its relative standard error where it is a Monte Carlo estimate of ours.
+struct Truth {
+    std::vector<double> value, error;
+};
+
+Truth truths(int n, const std::string& which, const TransportProblem& p, long histories) {
+    Truth t;
     if (n == 1) {
-        for (const KobayashiDetector& d : kKobayashiProblem1) t.push_back(which == "absorber" ? d.absorber : d.scatter);
+        for (const KobayashiDetector& d : kKobayashiProblem1)
+            t.value.push_back(which == "absorber" ? d.absorber : d.scatter);
         for (size_t i = 0; i < p.points.size(); ++i)
             if (p.points[i] != kKobayashiProblem1[i].at)
                 throw Error(p.file.string() + ": its points are not problem 1's");
-    } else if (which == "absorber") {
-        for (const Vec3& x : p.points) t.push_back(uncollidedQuadrature(p, x, 256));
+        t.error.assign(t.value.size(), 0.0);
+        return t;
+    }
+    for (const Vec3& x : p.points) t.value.push_back(uncollidedQuadrature(p, x, 256));
+    t.error.assign(t.value.size(), 0.0);
+    if (which == "scatter") {
+        const CollidedEstimate c = collidedMonteCarlo(p, p.points, histories);
+        for (size_t i = 0; i < t.value.size(); ++i) {
+            t.value[i] += c.flux[i];
+            t.error[i] = c.standardError[i] / t.value[i];
+        }
     }
     return t;
 }
@@ -71,15 +88,17 @@ TransportProblem withOverrides(TransportProblem p, int directions, double cell) 
 }
 
 void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::vector<std::string>& cases,
-               bool details, int repeats, const Overrides& overrides) {
+               bool details, int repeats, const Overrides& overrides, long histories) {
     out.print(
         "`lucent transport` on the problem files models/transport/kobayashi-N-CASE.json (2 cm cells, the\n"
-        "benchmark's, and their direction sets, unless the command line says otherwise), against problem 1's published "
-        "fluxes (exact for the absorber, Monte Carlo with\n"
-        "scattering) and the uncollided flux integrated without cells for the absorbers of problems 2 and 3;\n"
+        "benchmark's, and their direction sets, unless the command line says otherwise), against problem 1's\n"
+        "published fluxes (exact for the absorber, Monte Carlo with scattering) and, for problems 2 and 3,\n"
+        "the uncollided flux integrated without cells, plus with scattering the collided flux by our own\n"
+        "Monte Carlo (bench/collided_monte_carlo.h; %ld histories, its relative standard error given);\n"
         "the errors are the solver's cell values against the point values at the detectors. Time: the\n"
         "median of the repeated solves, uncollided flux included; memory: the process's peak resident\n"
-        "set so far.\n\n");
+        "set so far.\n\n",
+        histories);
     out.tableHeader({"problem", "case", "cells", "directions", "uncollided", "iterations", "time (s)",
                      "peak memory (MiB)", "detectors", "worst error", "mean absolute error", "worst at"},
                     {false, false, true, true, false, true, true, true, true, true, true, false});
@@ -87,7 +106,8 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
     std::string device;
     const std::vector<int> directionSets = overrides.directions.empty() ? std::vector<int>{0} : overrides.directions;
     for (int n : problems)
-        for (const std::string& which : cases)
+        for (const std::string& which : cases) {
+            Truth truth;
             for (int directions : directionSets) {
                 const TransportProblem p = withOverrides(
                     parseTransportProblem(std::string(LUCENT_SOURCE_DIR) + "/models/transport/kobayashi-" +
@@ -97,18 +117,20 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
                 std::vector<double> seconds{r.seconds};
                 for (int k = 1; k < repeats; ++k) seconds.push_back(hybrid::solveTransport(p).seconds);
                 if (device.empty()) out.addDevice("opencl: " + (device = r.device));
-                const std::vector<double> truth = truths(n, which, p);
+                if (truth.value.empty()) truth = truths(n, which, p, histories);
                 double worst = 0.0, sum = 0.0;
                 size_t at = 0;
-                for (size_t i = 0; i < truth.size(); ++i) {
-                    const double e = r.flux[i] / truth[i] - 1.0;
+                for (size_t i = 0; i < truth.value.size(); ++i) {
+                    const double e = r.flux[i] / truth.value[i] - 1.0;
                     sum += std::abs(e);
                     if (std::abs(e) > std::abs(worst)) worst = e, at = i;
                     if (details) {
                         const Vec3& x = p.points[i];
                         char row[160];
-                        std::snprintf(row, sizeof row, "| %d | %s | %d | (%g, %g, %g) | %.5g | %.5g | %+.2f%% |\n", n,
-                                      which.c_str(), p.directions, x.x, x.y, x.z, r.flux[i], truth[i], 100.0 * e);
+                        std::snprintf(row, sizeof row, "| %d | %s | %d | (%g, %g, %g) | %.5g | %.5g | %s | %+.2f%% |\n",
+                                      n, which.c_str(), p.directions, x.x, x.y, x.z, r.flux[i], truth.value[i],
+                                      truth.error[i] > 0.0 ? format("%.1f%%", 100.0 * truth.error[i]).c_str() : "",
+                                      100.0 * e);
                         lines.push_back(row);
                     }
                 }
@@ -120,14 +142,15 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
                      std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" + std::to_string(p.cells[2]),
                      std::to_string(p.directions), r.uncollidedMarched ? "marched" : "swept",
                      std::to_string(r.iterations), format("%.1f", median(seconds)), format("%.0f", peakResidentMiB()),
-                     std::to_string(p.points.size()), truth.empty() ? "(no truth)" : format("%+.1f%%", 100.0 * worst),
-                     truth.empty() ? "" : format("%.1f%%", 100.0 * sum / double(truth.size())),
-                     truth.empty() ? "" : where});
+                     std::to_string(p.points.size()), format("%+.1f%%", 100.0 * worst),
+                     format("%.1f%%", 100.0 * sum / double(truth.value.size())), where});
             }
+        }
     if (details && !lines.empty()) {
-        out.print("\nEvery detector with a truth:\n\n");
-        out.tableHeader({"problem", "case", "directions", "detector (cm)", "flux", "truth", "error"},
-                        {false, false, true, false, true, true, true});
+        out.print("\nEvery detector:\n\n");
+        out.tableHeader(
+            {"problem", "case", "directions", "detector (cm)", "flux", "truth", "truth's standard error", "error"},
+            {false, false, true, false, true, true, true, true});
         for (const std::string& line : lines) out.print("%s", line.c_str());
     }
 }
@@ -151,12 +174,15 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({24, 48, 80, 120, 168}));
     app.add_option("--cell", overrides.cell, "Cells of about this many cm instead of the files' 2 cm")
         ->check(CLI::Range(1.0, 50.0));
+    long histories = 1000000;
+    app.add_option("--histories", histories, "Monte Carlo histories of the truths of problems 2 and 3 with scattering")
+        ->check(CLI::Range(1000L, 1000000000L));
     app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        kobayashi(out, problems, cases, details, repeats, overrides);
+        kobayashi(out, problems, cases, details, repeats, overrides, histories);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-transport: error: %s\n", e.what());

@@ -1,101 +1,37 @@
 #include "bench/uncollided_quadrature.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <vector>
+#include <string>
+
+#include "bench/unfolded_problem.h"
 
 namespace lucent {
 
 namespace {
 
-struct Unfolded {
-    const TransportProblem& p;
-    int mirror[3] = {0, 0, 0};  // -1: the min face reflects, +1: the max face, 0: neither
-    std::vector<double> planes[3];
-
-    explicit Unfolded(const TransportProblem& problem) : p(problem) {
-        for (int a = 0; a < 3; ++a) {
-            if (p.reflective[2 * a] && p.reflective[2 * a + 1])
-                throw std::invalid_argument("uncollidedQuadrature: both faces of an axis are reflective");
-            mirror[a] = p.reflective[2 * a] ? -1 : p.reflective[2 * a + 1] ? 1 : 0;
-            std::vector<double> at{p.domain.min[a], p.domain.max[a]};
-            for (const TransportRegion& r : p.regions) {
-                at.push_back(r.box.min[a]);
-                at.push_back(r.box.max[a]);
-            }
-            for (double v : at) {
-                planes[a].push_back(v);
-                if (mirror[a] != 0) planes[a].push_back(2.0 * face(a) - v);
-            }
-        }
-    }
-    double face(int a) const { return mirror[a] < 0 ? p.domain.min[a] : p.domain.max[a]; }
-    Vec3 fold(Vec3 x) const {
-        for (int a = 0; a < 3; ++a)
-            if ((mirror[a] < 0 && x[a] < face(a)) || (mirror[a] > 0 && x[a] > face(a))) x[a] = 2.0 * face(a) - x[a];
-        return x;
-    }
-    // The region holding x (the last), or null for vacuum and outside the domain.
-    const TransportRegion* at(const Vec3& unfolded) const {
-        const Vec3 x = fold(unfolded);
-        if (!p.domain.contains(x)) return nullptr;
-        const TransportRegion* in = nullptr;
-        for (const TransportRegion& r : p.regions)
-            if (r.box.contains(x)) in = &r;
-        return in;
-    }
-    // Every source region and its mirror images, as one box.
-    Bounds3 sources() const {
-        Bounds3 all;
-        for (const TransportRegion& r : p.regions) {
-            if (r.source <= 0.0) continue;
-            for (int mask = 0; mask < 8; ++mask) {
-                Bounds3 b = r.box;
-                bool skip = false;
-                for (int a = 0; a < 3; ++a) {
-                    if (!(mask >> a & 1)) continue;
-                    if (mirror[a] == 0) skip = true;
-                    const double lo = 2.0 * face(a) - b.max[a], hi = 2.0 * face(a) - b.min[a];
-                    b.min[a] = lo;
-                    b.max[a] = hi;
-                }
-                if (skip) continue;
-                all.extend(b.min);
-                all.extend(b.max);
-            }
-        }
-        return all;
-    }
-    // int_0^end q e^{-tau} dt from x along w, exact between the planes.
-    double emission(const Vec3& x, const Vec3& w, double end) const {
-        std::vector<double> cuts{0.0, end};
-        for (int a = 0; a < 3; ++a) {
-            if (w[a] == 0.0) continue;
-            for (double v : planes[a]) {
-                const double t = (v - x[a]) / w[a];
-                if (t > 0.0 && t < end) cuts.push_back(t);
-            }
-        }
-        std::sort(cuts.begin(), cuts.end());
-        double tau = 0.0, sum = 0.0;
-        for (size_t i = 0; i + 1 < cuts.size(); ++i) {
-            const double length = cuts[i + 1] - cuts[i];
-            if (!(length > 0.0)) continue;
-            const TransportRegion* r = at(x + w * (0.5 * (cuts[i] + cuts[i + 1])));
-            const double sigma = r ? r->sigmaT : 0.0, q = r ? r->source : 0.0;
-            if (q > 0.0)
-                sum += q * std::exp(-tau) * (sigma * length > 1e-8 ? -std::expm1(-sigma * length) / sigma : length);
-            tau += sigma * length;
-        }
-        return sum;
-    }
-};
+// int_0^end q e^{-tau} dt from x along w, exact between the planes.
+double emission(const UnfoldedProblem& u, const Vec3& x, const Vec3& w, double end) {
+    double tau = 0.0, sum = 0.0;
+    u.walk(x, w, end, [&](const TransportRegion* r, double t0, double t1) {
+        const double length = t1 - t0, sigma = r ? r->sigmaT : 0.0, q = r ? r->source : 0.0;
+        if (q > 0.0)
+            sum += q * std::exp(-tau) * (sigma * length > 1e-8 ? -std::expm1(-sigma * length) / sigma : length);
+        tau += sigma * length;
+    });
+    return sum;
+}
 
 }  // namespace
 
 double uncollidedQuadrature(const TransportProblem& problem, const Vec3& x, int polar) {
-    const Unfolded u(problem);
+    const UnfoldedProblem u = [&] {
+        try {
+            return UnfoldedProblem(problem);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("uncollidedQuadrature: ") + e.what());
+        }
+    }();
     const Bounds3 box = u.sources();
     if (!(box.min.x <= box.max.x)) return 0.0;
     // The cone about the direction to the sources' centre that holds all
@@ -122,7 +58,7 @@ double uncollidedQuadrature(const TransportProblem& problem, const Vec3& x, int 
             const double phi = (j + 0.5) * 2.0 * kPi / azimuths;
             const Vec3 w = e1 * (s * std::cos(phi)) + e2 * (s * std::sin(phi)) + z * mu;
             double t0 = 0.0, t1 = kInfinity;
-            if (clipToBox(box, x, w, t0, t1)) sum += u.emission(x, w, t1);
+            if (clipToBox(box, x, w, t0, t1)) sum += emission(u, x, w, t1);
         }
     }
     return sum * ((1.0 - lowest) / polar) * (2.0 * kPi / azimuths) / (4.0 * kPi);

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bench/collided_monte_carlo.h"
 #include "bench/kobayashi_reference.h"
 #include "bench/uncollided_quadrature.h"
 #include "core/transport_problem.h"
@@ -47,9 +48,32 @@ TEST(Kobayashi, QuadratureReproducesProblemOnesExactFluxes) {
             << d.set << " (" << d.at.x << ", " << d.at.y << ", " << d.at.z << ")";
 }
 
+TEST(Kobayashi, MonteCarloReproducesProblemOnesScatteringFluxes) {
+    // The truth of the ducts' scattering cases (bench/collided_monte_carlo.h),
+    // with the quadrature's uncollided flux, on the problem whose scattering
+    // fluxes are published (their own error at most 0.6%): within 2% where its
+    // standard error is under 1% (the void's detectors), and within 5 standard
+    // errors and 1% everywhere. A few seconds of histories.
+    const TransportProblem p = problem("kobayashi-1-scatter.json", kProblemOneCells);
+    const CollidedEstimate c = collidedMonteCarlo(p, p.points, 16000);
+    int tight = 0;
+    for (size_t i = 0; i < std::size(kKobayashiProblem1); ++i) {
+        const KobayashiDetector& d = kKobayashiProblem1[i];
+        const double total = uncollidedQuadrature(p, d.at, 128) + c.flux[i];
+        const bool precise = c.standardError[i] < 0.01 * total;
+        tight += precise;
+        EXPECT_NEAR(total, d.scatter, precise ? 0.02 * d.scatter : 5.0 * c.standardError[i] + 0.01 * d.scatter)
+            << d.set << " (" << d.at.x << ", " << d.at.y << ", " << d.at.z << "), standard error "
+            << c.standardError[i] / total;
+    }
+    EXPECT_GE(tight, 10);  // the void's detectors at least
+}
+
 // Problem 1's case `file` solved, every detector within `bound` of its truth.
-TransportResult expectProblemOne(const std::string& file, double KobayashiDetector::*truth, double bound) {
-    const TransportProblem p = problem(file, kProblemOneCells);
+TransportResult expectProblemOne(const std::string& file, double KobayashiDetector::*truth, double bound,
+                                 int directions = 0) {
+    TransportProblem p = problem(file, kProblemOneCells);
+    if (directions > 0) p.directions = directions;
     EXPECT_EQ(p.points.size(), std::size(kKobayashiProblem1));
     const TransportResult r = solveTransport(p);
     for (size_t i = 0; i < std::min(p.points.size(), std::size(kKobayashiProblem1)); ++i) {
@@ -69,10 +93,12 @@ TEST(Kobayashi, ProblemOneAbsorberMeetsEveryDetector) {
 }
 
 TEST(Kobayashi, ProblemOneWithScatteringMeetsEveryDetector) {
-    // Half of every collision scatters: the collided light is swept at 120
-    // directions from the first-collision source, against the report's Monte
-    // Carlo values (their own error is at most 0.6%).
-    EXPECT_TRUE(expectProblemOne("kobayashi-1-scatter.json", &KobayashiDetector::scatter, 0.10).converged);
+    // Half of every collision scatters, against the report's Monte Carlo
+    // values (their own error is at most 0.6%). At 48 directions the light
+    // scattered in the source and swept across the void missed the far
+    // detectors by up to 21% (ray effects); the first-collided source takes
+    // it out of the sweeps (docs/transport.md).
+    EXPECT_TRUE(expectProblemOne("kobayashi-1-scatter.json", &KobayashiDetector::scatter, 0.10, 48).converged);
 }
 
 TEST(Kobayashi, DuctProblemsMeetTheirUncollidedFluxAtEveryDetector) {
