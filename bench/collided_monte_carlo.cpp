@@ -1,5 +1,6 @@
 #include "bench/collided_monte_carlo.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -63,6 +64,7 @@ private:
     struct Particle {
         Vec3 x, w;
         double weight, importance;
+        bool split = false;  // a copy that has yet to be tested for a collision where it was split off
     };
     // How much a particle at x matters to the points deep in the medium: e to
     // half the optical depth to the nearest source (splitting in proportion
@@ -73,32 +75,44 @@ private:
     // A particle until it escapes or is absorbed; the copies it splits into go on the stack.
     void follow(Random& random, Particle& p, std::vector<Particle>& stack, std::vector<double>& score) const {
         while (majorant_ > 0.0) {
-            const Vec3 y = p.x + p.w * (-std::log(1.0 - random()) / majorant_);
-            if (!domain_.contains(y)) return;  // through a vacuum face
-            p.x = u_.fold(y);
-            for (int a = 0; a < 3; ++a)
-                if (p.x[a] != y[a]) p.w[a] = -p.w[a];  // reflected
+            if (!p.split) {  // a copy split off here has flown already
+                const Vec3 y = p.x + p.w * (-std::log(1.0 - random()) / majorant_);
+                if (!domain_.contains(y)) return;  // through a vacuum face
+                p.x = u_.fold(y);
+                for (int a = 0; a < 3; ++a)
+                    if (p.x[a] != y[a]) p.w[a] = -p.w[a];  // reflected
+                // At every step, virtual collisions too (a particle that crossed a
+                // wall in one flight would reach the far side with the weight it
+                // had): split where the importance rose, roulette where it fell.
+                const double now = importance(p.x), ratio = now / p.importance;
+                p.importance = now;
+                if (ratio > 1.0) {
+                    const int copies = std::min(int(ratio + random()), 64);
+                    p.weight /= copies;
+                    Particle copy = p;
+                    copy.split = true;  // each copy is tested for a collision here too
+                    for (int c = 1; c < copies; ++c) stack.push_back(copy);
+                } else if (ratio < 1.0) {
+                    if (random() >= ratio) return;
+                    p.weight /= ratio;
+                }
+            }
+            p.split = false;
+            const double now = p.importance;
             const TransportRegion* r = u_.at(p.x);
             if (!r || random() * majorant_ >= r->sigmaT) continue;  // a virtual collision
             const double albedo = r->sigmaS / r->sigmaT;
             if (!(albedo > 0.0)) return;
             p.weight *= albedo;
             scoreCollision(p.x, p.weight, score);
-            p.w = random.direction();
-            // Split where the importance rose, roulette where it fell or the weight is low.
-            const double now = importance(p.x), ratio = now / p.importance;
-            p.importance = now;
-            if (ratio > 1.0) {
-                const int copies = std::min(int(ratio + random()), 64);
-                p.weight /= copies;
-                for (int c = 1; c < copies; ++c) stack.push_back({p.x, random.direction(), p.weight, now});
-            } else if (ratio < 1.0 || p.weight < 0.05 / now) {
-                const double survive = std::min(ratio, 1.0) * (p.weight < 0.05 / now ? 0.25 : 1.0);
-                if (random() >= survive) return;
-                p.weight /= survive;
+            if (p.weight < 0.05 / now) {  // light below its place's share: roulette
+                if (random() >= 0.25) return;
+                p.weight *= 4.0;
             }
+            p.w = random.direction();
         }
     }
+
     // The scattered light `emitted` at x, seen at every point from every image of x.
     void scoreCollision(const Vec3& x, double emitted, std::vector<double>& score) const {
         for (const Vec3& image : u_.images(x))

@@ -10,10 +10,13 @@
 // scattered light is scored at every point by the next-event (point
 // detector) estimator, e^{-tau} / (4 pi r^2) from every mirror image of the
 // collision through the unfolded medium (unfolded_problem.h); the particle
-// then goes on with its weight times the albedo (implicit capture, Russian
-// roulette below 1/20). Within r0 of a point the kernel is its mean over the
-// ball of radius r0, 3 / (4 pi r0^2): the estimator's variance is finite and
-// its bias of order (r0 / the flux's scale)^2.
+// then goes on with its weight times the albedo (implicit capture). Deep in a
+// shield few particles would arrive: at every step of the tracking a particle
+// splits where its importance, e to half the optical depth to the nearest
+// source, has risen, and plays Russian roulette where it has fallen or its
+// weight is low. Within r0 of a point the kernel is its mean over the ball of
+// radius r0, 3 / (4 pi r0^2): the estimator's variance is finite and its bias
+// of order (r0 / the flux's scale)^2.
 #include <cstdint>
 #include <vector>
 
