@@ -133,7 +133,9 @@ TransportFootprint transportFootprint(const std::array<int, 3>& cells, int direc
     const std::array<int, 3> d = part.dims();
     const double mine = double(d[0]) * d[1] * d[2], all = double(cells[0]) * cells[1] * cells[2];
     const int moments = bands * bands;
-    f.deviceBytes = double(DomSolver::bytesFor(d, directions, bands, ranks > 1));
+    // Marched, the uncollided flux stays on the device for the first-collided source.
+    f.deviceBytes = double(DomSolver::bytesFor(d, directions, bands, ranks > 1)) +
+                    (whole ? double(DomSolver::largestBufferFor(d, bands)) : 0.0);
     // Materials (three float4, the source's moments, the density) and the flux read back.
     const double perCell = (3 + moments) * 16.0 + 8.0;
     f.hostBytes = mine * (perCell + 16.0 * moments) + (whole && ranks > 1 ? all * perCell : 0.0);
@@ -171,8 +173,12 @@ void TransportSolver::Impl::prepare() {
     const size_t count = size_t(dims[0]) * dims[1] * dims[2];
     what = "the " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
            " cells of " + p.file.string();
-    // The host's copies: the source and the flux read back (M float4 per cell), the materials.
-    device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks() > 1),
+    // The device: the sweeps' buffers and, unless swept, the uncollided flux
+    // (the first-collided source keeps it). The host's copies: the source and
+    // the flux read back (M float4 per cell), the materials.
+    const bool marchable = p.uncollided != TransportProblem::Uncollided::Swept;
+    device.checkMemory(DomSolver::bytesFor(dims, p.directions, p.bands, ranks() > 1) +
+                           (marchable ? DomSolver::largestBufferFor(dims, p.bands) : 0),
                        DomSolver::largestBufferFor(dims, p.bands), what,
                        count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
     // The first-collision source of a rank's cells sees every source through
