@@ -136,13 +136,7 @@ private:
 
 CollidedEstimate collidedMonteCarlo(const TransportProblem& problem, const std::vector<Vec3>& points, long histories,
                                     int threads, uint64_t seed, double r0) {
-    const UnfoldedProblem u = [&] {
-        try {
-            return UnfoldedProblem(problem);
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(std::string("collidedMonteCarlo: ") + e.what());
-        }
-    }();
+    const UnfoldedProblem u(problem);
     const Histories h(u, points, r0);
     const long perBatch = std::max(1L, histories / kBatches);
     std::vector<std::vector<double>> batch(kBatches, std::vector<double>(points.size(), 0.0));

@@ -1,8 +1,6 @@
 #include "bench/uncollided_quadrature.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "bench/unfolded_problem.h"
 
@@ -25,13 +23,7 @@ double emission(const UnfoldedProblem& u, const Vec3& x, const Vec3& w, double e
 }  // namespace
 
 double uncollidedQuadrature(const TransportProblem& problem, const Vec3& x, int polar) {
-    const UnfoldedProblem u = [&] {
-        try {
-            return UnfoldedProblem(problem);
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(std::string("uncollidedQuadrature: ") + e.what());
-        }
-    }();
+    const UnfoldedProblem u(problem);
     const Bounds3 box = u.sources();
     if (!(box.min.x <= box.max.x)) return 0.0;
     // The cone about the direction to the sources' centre that holds all

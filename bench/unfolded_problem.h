@@ -19,7 +19,7 @@ public:
     explicit UnfoldedProblem(const TransportProblem& problem) : p_(problem) {
         for (int a = 0; a < 3; ++a) {
             if (p_.reflective[2 * a] && p_.reflective[2 * a + 1])
-                throw std::invalid_argument("both faces of an axis are reflective");
+                throw std::invalid_argument("a transport problem unfolded: both faces of an axis are reflective");
             mirror_[a] = p_.reflective[2 * a] ? -1 : p_.reflective[2 * a + 1] ? 1 : 0;
             std::vector<double> at{p_.domain.min[a], p_.domain.max[a]};
             for (const TransportRegion& r : p_.regions) {
