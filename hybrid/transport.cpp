@@ -183,7 +183,7 @@ void TransportSolver::Impl::prepare() {
                        count * size_t(2 * p.bands * p.bands + 3) * sizeof(glm::vec4));
     // The first-collision source of a rank's cells sees every source through
     // the whole grid: each rank holds all of it unless the uncollided flux is swept.
-    const bool wholeNeeded = ranks() == 1 || p.uncollided != TransportProblem::Uncollided::Swept;
+    const bool wholeNeeded = ranks() == 1 || marchable;
     const Materials whole = wholeNeeded ? materialsIn(p, {0, 0, 0}, p.cells) : Materials{};
     const Materials local = ranks() == 1 ? Materials{} : materialsIn(p, part.lo, part.hi);
     const Materials& mine = ranks() == 1 ? whole : local;
