@@ -33,6 +33,11 @@ public:
             std::sort(planes_[a].begin(), planes_[a].end());
             planes_[a].erase(std::unique(planes_[a].begin(), planes_[a].end()), planes_[a].end());
         }
+        for (const TransportRegion& r : p_.regions) {
+            if (r.source <= 0.0) continue;
+            for (const Vec3& corner : images(r.box.min)) sources_.extend(corner);
+            for (const Vec3& corner : images(r.box.max)) sources_.extend(corner);
+        }
     }
     const TransportProblem& problem() const { return p_; }
     // -1: the axis's min face reflects, +1: its max face, 0: neither.
@@ -77,14 +82,48 @@ public:
         return in;
     }
     // Every source region and its mirror images, as one box.
-    Bounds3 sources() const {
-        Bounds3 all;
-        for (const TransportRegion& r : p_.regions) {
-            if (r.source <= 0.0) continue;
-            for (const Vec3& corner : images(r.box.min)) all.extend(corner);
-            for (const Vec3& corner : images(r.box.max)) all.extend(corner);
+    const Bounds3& sources() const { return sources_; }
+    // The cone from x that holds every source and its mirror images (a convex
+    // box lies in the cone of its corners), or the whole sphere from among them.
+    struct Cone {
+        Vec3 axis, e1, e2;  // an orthonormal frame about the axis
+        double lowest;      // the cosine of the half-angle: -1 for the sphere
+        Vec3 direction(double mu, double phi) const {
+            const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+            return e1 * (s * std::cos(phi)) + e2 * (s * std::sin(phi)) + axis * mu;
         }
-        return all;
+    };
+    Cone sourceCone(const Vec3& x) const {
+        const Bounds3 box = sources();
+        Cone c{Vec3(0, 0, 1), {}, {}, -1.0};
+        if (box.min.x <= box.max.x && !box.contains(x) && glm::length(box.center() - x) > 0.0) {
+            c.axis = glm::normalize(box.center() - x);
+            c.lowest = 1.0;
+            for (int k = 0; k < 8; ++k) {
+                const Vec3 corner(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y,
+                                  k & 4 ? box.max.z : box.min.z);
+                c.lowest = std::min(c.lowest, glm::dot(glm::normalize(corner - x), c.axis));
+            }
+        }
+        const Vec3 helper = std::abs(c.axis.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        c.e1 = glm::normalize(glm::cross(helper, c.axis));
+        c.e2 = glm::cross(c.axis, c.e1);
+        return c;
+    }
+    // int q e^{-tau} dt from x along w until the ray leaves the sources' box,
+    // exact between the planes: the sources' uncollided radiance arriving at x
+    // from -w.
+    double emission(const Vec3& x, const Vec3& w) const {
+        double t0 = 0.0, end = kInfinity;
+        if (!clipToBox(sources(), x, w, t0, end)) return 0.0;
+        double tau = 0.0, sum = 0.0;
+        walk(x, w, end, [&](const TransportRegion* r, double a, double b) {
+            const double length = b - a, sigma = r ? r->sigmaT : 0.0, q = r ? r->source : 0.0;
+            if (q > 0.0)
+                sum += q * std::exp(-tau) * (sigma * length > 1e-8 ? -std::expm1(-sigma * length) / sigma : length);
+            tau += sigma * length;
+        });
+        return sum;
     }
     // Calls piece(region or null, t0, t1) for each stretch [t0, t1] of x + t w,
     // 0 <= t <= end, over which the medium is constant, in order.
@@ -118,6 +157,7 @@ private:
     const TransportProblem& p_;
     int mirror_[3] = {0, 0, 0};
     std::vector<double> planes_[3];
+    Bounds3 sources_;
 };
 
 }  // namespace lucent
