@@ -10,7 +10,7 @@
 // to see which of the two an error follows (docs/transport.md).
 //
 //   build/bin/lucent-bench-transport [--problems 1,2,3] [--cases absorber,scatter] [--details] [--repeats 3]
-//                                    [--directions 24,48,...] [--cell CM] [--histories 1000000]
+//                                    [--directions 24,48,...] [--cell CM] [--histories 4000000]
 //                                    [--record docs/results/kobayashi.md]
 #include <CLI/CLI.hpp>
 
@@ -58,12 +58,13 @@ struct Truth {
 Truth truths(int n, const std::string& which, const TransportProblem& p, long histories) {
     Truth t;
     if (n == 1) {
-        for (const KobayashiDetector& d : kKobayashiProblem1)
+        for (const KobayashiDetector& d : kKobayashiProblem1) {
             t.value.push_back(which == "absorber" ? d.absorber : d.scatter);
+            t.error.push_back(which == "absorber" ? 0.0 : d.scatterError);  // exact, or the report's Monte Carlo
+        }
         for (size_t i = 0; i < p.points.size(); ++i)
             if (p.points[i] != kKobayashiProblem1[i].at)
                 throw Error(p.file.string() + ": its points are not problem 1's");
-        t.error.assign(t.value.size(), 0.0);
         return t;
     }
     for (const Vec3& x : p.points) t.value.push_back(uncollidedQuadrature(p, x, 256));
@@ -98,11 +99,11 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
         "benchmark's, and their direction sets, unless the command line says otherwise), against problem 1's\n"
         "published fluxes (exact for the absorber, Monte Carlo with scattering) and, for problems 2 and 3,\n"
         "the uncollided flux integrated without cells, plus with scattering the collided flux by our own\n"
-        "Monte Carlo (bench/collided_monte_carlo.h; %ld histories, its relative standard error given);\n"
-        "the errors are the solver's cell values against the point values at the detectors, judged\n"
-        "where the truth is known to %.1f%% (a Monte Carlo truth with a larger standard error is shown, not\n"
-        "judged). Time: the median of the repeated solves, uncollided flux included; memory: the process's\n"
-        "peak resident set so far.\n\n",
+        "Monte Carlo (bench/collided_monte_carlo.h; %ld histories per detector). Monte Carlo truths show\n"
+        "their relative standard error. The errors are the solver's cell values against the point values\n"
+        "at the detectors, judged where the truth is known to %.1f%% (a Monte Carlo truth with a larger\n"
+        "standard error is shown, not judged). Time: the median of the repeated solves, uncollided flux\n"
+        "included; memory: the process's peak resident set so far.\n\n",
         histories, 100.0 * kJudged);
     out.tableHeader({"problem", "case", "cells", "directions", "uncollided", "iterations", "time (s)",
                      "peak memory (MiB)", "detectors judged", "worst error", "mean absolute error", "worst at"},
@@ -183,8 +184,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({24, 48, 80, 120, 168}));
     app.add_option("--cell", overrides.cell, "Cells of about this many cm instead of the files' 2 cm")
         ->check(CLI::Range(1.0, 50.0));
-    long histories = 1000000;
-    app.add_option("--histories", histories, "Monte Carlo histories of the truths of problems 2 and 3 with scattering")
+    long histories = 4000000;
+    app.add_option("--histories", histories,
+                   "Monte Carlo histories per detector of the truths of problems 2 and 3 with scattering")
         ->check(CLI::Range(1000L, 1000000000L));
     app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);

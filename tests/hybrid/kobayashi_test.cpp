@@ -51,12 +51,11 @@ TEST(Kobayashi, QuadratureReproducesProblemOnesExactFluxes) {
 TEST(Kobayashi, MonteCarloReproducesProblemOnesScatteringFluxes) {
     // The truth of the ducts' scattering cases (bench/collided_monte_carlo.h),
     // with the quadrature's uncollided flux, on the problem whose scattering
-    // fluxes are published (their own error at most 0.6%): within 2% where its
-    // standard error is under 1% (the void's detectors). A few seconds of
-    // histories; deep in the shield its error is larger and heavy-tailed, so
-    // those detectors are not judged here.
+    // fluxes are published (their own error at most 0.6%): within 2% wherever
+    // its standard error is under 1%. A second of histories reaches that at
+    // the void's detectors and a few in the shield.
     const TransportProblem p = problem("kobayashi-1-scatter.json", kProblemOneCells);
-    const CollidedEstimate c = collidedMonteCarlo(p, p.points, 16000);
+    const CollidedEstimate c = collidedMonteCarlo(p, p.points, 20000);
     int tight = 0;
     for (size_t i = 0; i < std::size(kKobayashiProblem1); ++i) {
         const KobayashiDetector& d = kKobayashiProblem1[i];
@@ -66,7 +65,7 @@ TEST(Kobayashi, MonteCarloReproducesProblemOnesScatteringFluxes) {
         EXPECT_NEAR(total, d.scatter, 0.02 * d.scatter) << d.set << " (" << d.at.x << ", " << d.at.y << ", " << d.at.z
                                                         << "), standard error " << c.standardError[i] / total;
     }
-    EXPECT_GE(tight, 10);  // the void's detectors at least
+    EXPECT_GE(tight, 15);
 }
 
 // Problem 1's case `file` solved, every detector within `bound` of its truth.
