@@ -8,10 +8,14 @@
 //
 // --directions and --cell change the problem files' direction sets and cells,
 // to see which of the two an error follows (docs/transport.md).
+// --convergence runs one problem file against itself as its directions grow,
+// where no independent truth exists (the scattering cube of docs/transport.md).
 //
 //   build/bin/lucent-bench-transport [--problems 1,2,3] [--cases absorber,scatter] [--details] [--repeats 3]
 //                                    [--directions 24,48,...] [--cell CM] [--histories 4000000]
 //                                    [--record docs/results/kobayashi.md]
+//   build/bin/lucent-bench-transport --convergence models/transport/scattering-cube.json [--directions 24,48,120]
+//                                    [--record docs/results/scattering-cube.md]
 #include <CLI/CLI.hpp>
 
 #include <sys/resource.h>
@@ -165,6 +169,46 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
     }
 }
 
+// A problem file's flux at its points as the directions grow, swept and
+// marched, against the file's own solve as the converged value: where no
+// independent truth exists, how far each direction set is from convergence
+// (docs/transport.md, the scattering cube).
+void convergence(ResultsRecord& out, const std::string& file, const std::vector<int>& directions) {
+    const TransportProblem converged = parseTransportProblem(file);
+    const hybrid::TransportResult truth = hybrid::solveTransport(converged);
+    out.addDevice("opencl: " + truth.device);
+    const std::string mode = truth.uncollidedMarched ? "marched" : "swept";
+    out.print(
+        "`lucent transport` on %s.\n\n"
+        "The flux at its points with fewer directions, the uncollided flux swept and marched, against\n"
+        "its own solve at %d directions (%s) as the converged value: a convergence study, not an\n"
+        "independent truth. Time: each solve's, uncollided flux included.\n\n",
+        file.c_str(), converged.directions, mode.c_str());
+    std::vector<std::string> header{"point", "N = " + std::to_string(converged.directions) + " " + mode};
+    std::vector<std::vector<std::string>> rows(converged.points.size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const Vec3& x = converged.points[i];
+        rows[i] = {format("(%g, ", x.x) + format("%g, ", x.y) + format("%g)", x.z), format("%.4g", truth.flux[i])};
+    }
+    std::vector<std::string> times{"time (s)", format("%.1f", truth.seconds)};
+    for (int n : directions)
+        for (const auto how : {TransportProblem::Uncollided::Swept, TransportProblem::Uncollided::Marched}) {
+            TransportProblem p = converged;
+            p.directions = n;
+            p.uncollided = how;
+            const hybrid::TransportResult r = hybrid::solveTransport(p);
+            header.push_back("N = " + std::to_string(n) + (r.uncollidedMarched ? " marched" : " swept"));
+            for (size_t i = 0; i < rows.size(); ++i)
+                rows[i].push_back(format("%+.1f%%", 100.0 * (r.flux[i] / truth.flux[i] - 1.0)));
+            times.push_back(format("%.1f", r.seconds));
+        }
+    std::vector<bool> numeric(header.size(), true);
+    numeric[0] = false;
+    out.tableHeader(header, numeric);
+    for (const std::vector<std::string>& row : rows) out.tableRow(row);
+    out.tableRow(times);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -188,12 +232,21 @@ int main(int argc, char** argv) {
     app.add_option("--histories", histories,
                    "Monte Carlo histories per detector of the truths of problems 2 and 3 with scattering")
         ->check(CLI::Range(1000L, 1000000000L));
+    std::string convergenceFile;
+    app.add_option("--convergence", convergenceFile,
+                   "Instead of Kobayashi's problems: this problem file against itself as --directions grow "
+                   "(default 24,48,120), swept and marched")
+        ->check(CLI::ExistingFile);
     app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
     CLI11_PARSE(app, argc, argv);
     try {
         if (!recordFile.empty()) checkWritable(recordFile);
         ResultsRecord out(argc, argv);
-        kobayashi(out, problems, cases, details, repeats, overrides, histories);
+        if (!convergenceFile.empty())
+            convergence(out, convergenceFile,
+                        overrides.directions.empty() ? std::vector<int>{24, 48, 120} : overrides.directions);
+        else
+            kobayashi(out, problems, cases, details, repeats, overrides, histories);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-transport: error: %s\n", e.what());
