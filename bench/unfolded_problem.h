@@ -40,8 +40,6 @@ public:
         }
     }
     const TransportProblem& problem() const { return p_; }
-    // -1: the axis's min face reflects, +1: its max face, 0: neither.
-    int mirror(int a) const { return mirror_[a]; }
     double face(int a) const { return mirror_[a] < 0 ? p_.domain.min[a] : p_.domain.max[a]; }
     // The domain with its mirror images: where the unfolded medium is.
     Bounds3 unfoldedDomain() const {
@@ -56,21 +54,6 @@ public:
         for (int a = 0; a < 3; ++a)
             if ((mirror_[a] < 0 && x[a] < face(a)) || (mirror_[a] > 0 && x[a] > face(a))) x[a] = 2.0 * face(a) - x[a];
         return x;
-    }
-    // The point's images across every combination of the mirrors (itself first).
-    std::vector<Vec3> images(const Vec3& x) const {
-        std::vector<Vec3> out;
-        for (int mask = 0; mask < 8; ++mask) {
-            Vec3 y = x;
-            bool skip = false;
-            for (int a = 0; a < 3; ++a) {
-                if (!(mask >> a & 1)) continue;
-                if (mirror_[a] == 0) skip = true;
-                y[a] = 2.0 * face(a) - y[a];
-            }
-            if (!skip) out.push_back(y);
-        }
-        return out;
     }
     // The region holding x (the last), or null for vacuum and outside the domain.
     const TransportRegion* at(const Vec3& unfolded) const {
@@ -94,7 +77,7 @@ public:
         }
     };
     Cone sourceCone(const Vec3& x) const {
-        const Bounds3 box = sources();
+        const Bounds3& box = sources_;
         Cone c{Vec3(0, 0, 1), {}, {}, -1.0};
         if (box.min.x <= box.max.x && !box.contains(x) && glm::length(box.center() - x) > 0.0) {
             c.axis = glm::normalize(box.center() - x);
@@ -142,20 +125,26 @@ public:
         for (size_t i = 0; i + 1 < cuts.size(); ++i)
             if (cuts[i + 1] > cuts[i]) piece(at(x + w * (0.5 * (cuts[i] + cuts[i + 1]))), cuts[i], cuts[i + 1]);
     }
-    // The optical depth between two points of the unfolded medium.
-    double opticalDepth(const Vec3& from, const Vec3& to) const {
-        const double length = glm::length(to - from);
-        if (!(length > 0.0)) return 0.0;
-        double tau = 0.0;
-        walk(from, (to - from) / length, length, [&](const TransportRegion* r, double t0, double t1) {
-            if (r) tau += r->sigmaT * (t1 - t0);
-        });
-        return tau;
-    }
 
 private:
+    // The point's images across every combination of the mirrors (itself first).
+    std::vector<Vec3> images(const Vec3& x) const {
+        std::vector<Vec3> out;
+        for (int mask = 0; mask < 8; ++mask) {
+            Vec3 y = x;
+            bool skip = false;
+            for (int a = 0; a < 3; ++a) {
+                if (!(mask >> a & 1)) continue;
+                if (mirror_[a] == 0) skip = true;
+                y[a] = 2.0 * face(a) - y[a];
+            }
+            if (!skip) out.push_back(y);
+        }
+        return out;
+    }
+
     const TransportProblem& p_;
-    int mirror_[3] = {0, 0, 0};
+    int mirror_[3] = {0, 0, 0};  // per axis: -1, its min face reflects; +1, its max face; 0, neither
     std::vector<double> planes_[3];
     Bounds3 sources_;
 };
