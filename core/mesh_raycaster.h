@@ -4,6 +4,7 @@
 // ray that lie inside, point containment and distance to the surface.
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/math.h"
@@ -37,6 +38,14 @@ public:
     bool insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out,
                          std::optional<bool> originInside = std::nullopt) const;
 
+    // The same for up to kPacket rays at once, out[k] for ray k (every span as
+    // long as origins). Rays that run side by side (parallel, from nearby
+    // origins) traverse the tree together as one packet, at a fraction of their
+    // cost one by one: the SH projection's rays, one direction from neighbouring samples.
+    static constexpr size_t kPacket = 16;
+    void insideIntervals(std::span<const Vec3> origins, std::span<const Vec3> dirs, double tMax,
+                         std::span<std::vector<Interval>> out) const;
+
     // Distance to the first crossing, or infinity.
     double firstHit(const Vec3& origin, const Vec3& dir) const;
     // The first crossing beyond tMin: one nearest-hit traversal, where crossings()
@@ -51,6 +60,12 @@ public:
     const Bounds3& bounds() const { return bounds_; }
 
 private:
+    // The crossings of a ray that hit these faces, sorted and merged (crossings()).
+    void toCrossings(const std::vector<uint32_t>& faces, const Vec3& origin, const Vec3& dir,
+                     std::vector<Crossing>& out) const;
+    // insideIntervals() from the ray's crossings.
+    bool intervalsFrom(const std::vector<Crossing>& cs, const Vec3& origin, const Vec3& dir, double tMax,
+                       std::vector<Interval>& out, std::optional<bool> originInside) const;
     struct Tree;
     std::unique_ptr<Tree> tree_;
     Bounds3 bounds_;

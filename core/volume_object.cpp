@@ -1,6 +1,7 @@
 #include "core/volume_object.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 
 #include "core/error.h"
@@ -130,6 +131,23 @@ double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& 
     double path = 0.0;
     for (const Interval& s : inside) path += density_->integrate(origin + s.t0 * dir, origin + s.t1 * dir);
     return path;
+}
+
+void VolumeObject::densityPaths(std::span<const Vec3> origins, std::span<const Vec3> dirs, bool throughBlockers,
+                                std::span<double> out) const {
+    thread_local std::array<std::vector<Interval>, MeshRaycaster::kPacket> inside;
+    const size_t count = std::min(origins.size(), inside.size());
+    boundary().insideIntervals(origins, dirs, kInfinity, std::span(inside.data(), origins.size()));
+    for (size_t k = 0; k < count; ++k) {
+        if (!throughBlockers && !blockers_.empty() && firstBlockerHit(origins[k], dirs[k]) < kInfinity) {
+            out[k] = kInfinity;
+            continue;
+        }
+        double path = 0.0;
+        for (const Interval& s : inside[k])
+            path += density_->integrate(origins[k] + s.t0 * dirs[k], origins[k] + s.t1 * dirs[k]);
+        out[k] = path;
+    }
 }
 
 void VolumeObject::setIor(double ior) {

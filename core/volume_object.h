@@ -7,6 +7,7 @@
 // object's own space (objectMesh(), placement()), so one sample file serves
 // every placement.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,11 @@ public:
     // The same path with the blockers filled by the medium around them: what the
     // Lucent scheme projects, leaving the blockers' hard shadows to the runtime.
     double densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
+    // Either path (throughBlockers picks) to the boundary for up to
+    // MeshRaycaster::kPacket rays, traced as one packet: rays side by side cost a
+    // fraction of their cost one by one (MeshRaycaster::insideIntervals).
+    void densityPaths(std::span<const Vec3> origins, std::span<const Vec3> dirs, bool throughBlockers,
+                      std::span<double> out) const;
 
     bool contains(const Vec3& p) const { return boundary().contains(p); }
     // The shading normal at p on the boundary's face: the runtime's, interpolated

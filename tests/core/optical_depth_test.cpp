@@ -181,3 +181,77 @@ TEST(OpticalDepth, RaysGrazingEdgesKeepTheirParity) {
 
 }  // namespace
 }  // namespace lucent
+
+namespace lucent {
+namespace {
+
+// Packets of parallel rays from neighbouring points (the SH projection's): each
+// ray's path is the circle's chord, and the same as the ray traced alone.
+TEST(OpticalDepth, PacketsOfParallelRaysMatchTheCircleAndEachRayAlone) {
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 1.0), warnings);
+    const VolumeObject torus(test::simpleObject(test::modelsDir() / "torus.obj", 1.0), warnings);
+    Rng rng(5, 2);
+    for (int packet = 0; packet < 40; ++packet) {
+        const size_t count = 1 + size_t(packet) % MeshRaycaster::kPacket;  // short packets too
+        const Vec3 w = glm::normalize(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const Vec3 centre = 0.8 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        std::vector<Vec3> origins(count), dirs(count, w);
+        for (Vec3& x : origins) x = centre + 0.05 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        std::vector<double> paths(count);
+        sphere.densityPaths(origins, dirs, true, paths);
+        for (size_t k = 0; k < count; ++k) {
+            const double b = glm::dot(origins[k], w), c = glm::dot(origins[k], origins[k]) - 1.0;
+            EXPECT_NEAR(paths[k], -b + std::sqrt(b * b - c), 1e-3);  // the icosphere's sagitta
+            EXPECT_DOUBLE_EQ(paths[k], sphere.densityPath(origins[k], w));
+        }
+        // The torus is crossed up to four times, and rays from outside start there.
+        for (Vec3& x : origins) x *= 1.5;
+        torus.densityPaths(origins, dirs, true, paths);
+        for (size_t k = 0; k < count; ++k) EXPECT_DOUBLE_EQ(paths[k], torus.densityPath(origins[k], w)) << k;
+    }
+}
+
+TEST(OpticalDepth, APacketSeesBlockersUnlessItLooksThroughThem) {
+    test::ScratchDir dir;
+    ObjectDesc desc = test::simpleObject(dir.write("outer.obj", boxObj(Vec3(-1), Vec3(1))), 2.0);
+    desc.medium.blockers = {dir.write("inner.obj", boxObj(Vec3(-0.2), Vec3(0.2)))};
+    std::vector<std::string> warnings;
+    const VolumeObject object(desc, warnings);
+    const std::vector<Vec3> origins = {Vec3(-0.8, 0, 0), Vec3(-0.8, 0.5, 0)}, dirs(2, Vec3(1, 0, 0));
+    std::vector<double> paths(2);
+    object.densityPaths(origins, dirs, false, paths);
+    EXPECT_EQ(paths[0], kInfinity);
+    EXPECT_NEAR(paths[1], 1.8, 1e-9);
+    object.densityPaths(origins, dirs, true, paths);
+    EXPECT_NEAR(paths[0], 1.8, 1e-9);  // the blocker filled by the medium
+    EXPECT_NEAR(paths[1], 1.8, 1e-9);
+}
+
+// Closest points against closed forms: the cube's (faces, edges and corners,
+// from inside and outside) and the sphere's, whose 20480 faces only a search
+// that culls right finds the nearest of.
+TEST(ClosestPoint, CubeAndSphereInClosedForm) {
+    std::vector<std::string> warnings;
+    const VolumeObject cube(test::simpleObject(test::modelsDir() / "cube.obj", 1.0), warnings);
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 1.0), warnings);
+    Rng rng(11, 3);
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 p = 3.0 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        Vec3 expected = glm::clamp(p, Vec3(-1.0), Vec3(1.0));
+        if (expected == p) {  // inside: straight to the face with the least slack
+            int axis = 0;
+            for (int a = 1; a < 3; ++a)
+                if (1.0 - std::abs(p[a]) < 1.0 - std::abs(p[axis])) axis = a;
+            expected[axis] = p[axis] < 0.0 ? -1.0 : 1.0;
+        }
+        const Vec3 got = cube.boundary().closestPoint(p);
+        EXPECT_LT(glm::length(got - expected), 1e-12) << i;
+        // The icosphere lies between the unit sphere and its sagitta (~2e-4) inside it.
+        EXPECT_NEAR(sphere.boundary().distanceToSurface(p), std::abs(glm::length(p) - 1.0), 5e-4) << i;
+    }
+    EXPECT_LT(glm::length(sphere.boundary().closestPoint(Vec3(40, 0, 0)) - Vec3(1, 0, 0)), 1e-3);
+}
+
+}  // namespace
+}  // namespace lucent
