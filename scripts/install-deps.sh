@@ -15,8 +15,8 @@ done
 
 packages=(
   build-essential cmake pkg-config
-  # geometry, ray casting and volumes
-  libcgal-dev libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
+  # meshes, ray casting and volumes
+  libopenmesh-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   # math, parsing, command line
   libembree-dev libeigen3-dev libglm-dev nlohmann-json3-dev libcli11-dev
   # glTF 2.0 scenes (.gltf, .glb)

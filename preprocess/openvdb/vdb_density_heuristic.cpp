@@ -2,6 +2,10 @@
 // T and the receivable light on every voxel of the distance field's band.
 #include "preprocess/openvdb/vdb_density_heuristic.h"
 
+#include <algorithm>
+#include <array>
+#include <span>
+
 #include <openvdb/tools/GridOperators.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tree/LeafManager.h>
@@ -57,24 +61,47 @@ VdbHeuristicField::VdbHeuristicField(const VolumeObject& object, const VdbDistan
     Progress progress("density heuristic", moments.leafCount());
     // Leaves are visited in a fixed order and every voxel's value depends only on its
     // position, so the result is the same for any number of threads.
+    // A leaf's voxels are neighbours: their rays of one direction go to Embree
+    // as packets (MeshRaycaster::kPacket), side by side.
+    constexpr size_t P = MeshRaycaster::kPacket;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, moments.leafCount(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<Vec3> points;
+        std::vector<openvdb::Index> offsets;
+        std::array<Vec3, P> origins, sameDirection;
+        std::array<double, P> paths;
+        std::array<Vec3, P> moment;
+        std::array<double, P> zeroth;
         for (size_t l = r.begin(); l < r.end(); ++l) {
             auto& leafT = moments.leaf(l);
             auto* leafS = receivable.leaf(l).buffer().data();
+            points.clear();
+            offsets.clear();
             for (auto it = leafT.beginValueOn(); it; ++it) {
                 const openvdb::Vec3d p = transform.indexToWorld(it.getCoord());
-                const Vec3 x = centre_ + scale_ * Vec3(p.x(), p.y(), p.z());
-                Vec3 moment(0.0);
-                double zeroth = 0.0;
+                points.push_back(centre_ + scale_ * Vec3(p.x(), p.y(), p.z()));
+                offsets.push_back(it.pos());
+            }
+            for (size_t first = 0; first < points.size(); first += P) {
+                const size_t count = std::min(P, points.size() - first);
+                std::copy_n(points.begin() + first, count, origins.begin());
+                moment.fill(Vec3(0.0));
+                zeroth.fill(0.0);
                 for (const Vec3& w : dirs) {
-                    const double path = object.densityPath(x, w);
-                    const double f = path == kInfinity ? 0.0 : std::exp(-settings.extinction * path);
-                    moment += f * w;
-                    zeroth += f;
+                    sameDirection.fill(w);
+                    object.densityPaths(std::span(origins.data(), count), std::span(sameDirection.data(), count), false,
+                                        std::span(paths.data(), count));
+                    for (size_t k = 0; k < count; ++k) {
+                        const double f = paths[k] == kInfinity ? 0.0 : std::exp(-settings.extinction * paths[k]);
+                        moment[k] += f * w;
+                        zeroth[k] += f;
+                    }
                 }
-                it.setValue(
-                    openvdb::Vec3s(float(weight * moment.x), float(weight * moment.y), float(weight * moment.z)));
-                leafS[it.pos()] = float(weight * zeroth / (4.0 * kPi));
+                for (size_t k = 0; k < count; ++k) {
+                    leafT.setValueOnly(offsets[first + k],
+                                       openvdb::Vec3s(float(weight * moment[k].x), float(weight * moment[k].y),
+                                                      float(weight * moment[k].z)));
+                    leafS[offsets[first + k]] = float(weight * zeroth[k] / (4.0 * kPi));
+                }
             }
             progress.advance();
         }
