@@ -26,16 +26,27 @@ RTCDevice sharedDevice() {
 }
 
 // Collects every hit along the ray and rejects each, so traversal goes on to the end.
+// Each hit's plane is fetched into the cache as the hit is found, so that it is
+// there when the crossing is computed after the traversal (it was a cache miss
+// on most hits: the hits' faces are scattered over the mesh).
 struct CollectingContext {
     RTCIntersectContext context;
     std::vector<uint32_t>* faces;
+    const void* planes;  // MeshRaycaster::Tree::Plane[]
+    size_t planeSize;
 };
+
+void prefetchPlane(const void* planes, size_t planeSize, uint32_t face) {
+    __builtin_prefetch(static_cast<const char*>(planes) + size_t(face) * planeSize);
+}
 
 void collectHit(const RTCFilterFunctionNArguments* args) {
     auto* collecting = reinterpret_cast<CollectingContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        collecting->faces->push_back(RTCHitN_primID(args->hit, args->N, i));
+        const uint32_t face = RTCHitN_primID(args->hit, args->N, i);
+        prefetchPlane(collecting->planes, collecting->planeSize, face);
+        collecting->faces->push_back(face);
         args->valid[i] = 0;
     }
 }
@@ -44,13 +55,17 @@ void collectHit(const RTCFilterFunctionNArguments* args) {
 struct PacketCollectingContext {
     RTCIntersectContext context;
     std::vector<uint32_t>* faces;
+    const void* planes;
+    size_t planeSize;
 };
 
 void collectHitByRayId(const RTCFilterFunctionNArguments* args) {
     auto* collecting = reinterpret_cast<PacketCollectingContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        collecting->faces[RTCRayN_id(args->ray, args->N, i)].push_back(RTCHitN_primID(args->hit, args->N, i));
+        const uint32_t face = RTCHitN_primID(args->hit, args->N, i);
+        prefetchPlane(collecting->planes, collecting->planeSize, face);
+        collecting->faces[RTCRayN_id(args->ray, args->N, i)].push_back(face);
         args->valid[i] = 0;
     }
 }
@@ -157,6 +172,8 @@ void MeshRaycaster::crossings(const Vec3& origin, const Vec3& dir, std::vector<C
     rtcInitIntersectContext(&collecting.context);
     collecting.context.filter = collectHit;
     collecting.faces = &faces;
+    collecting.planes = tree_->planes.data();
+    collecting.planeSize = sizeof(Tree::Plane);
     RTCRayHit query = rayQuery(origin - origin_, dir, 0.0);
     rtcIntersect1(tree_->scene, &collecting.context, &query);
     toCrossings(faces, origin, dir, out);
@@ -230,6 +247,8 @@ void MeshRaycaster::insideIntervals(std::span<const Vec3> origins, std::span<con
     collecting.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     collecting.context.filter = collectHitByRayId;
     collecting.faces = faces.data();
+    collecting.planes = tree_->planes.data();
+    collecting.planeSize = sizeof(Tree::Plane);
     alignas(64) int valid[kPacket];
     alignas(64) RTCRayHit16 packet{};
     for (size_t k = 0; k < kPacket; ++k) {
@@ -332,7 +351,7 @@ bool closerTriangle(RTCPointQueryFunctionArguments* args) {
 
 }  // namespace
 
-Vec3 MeshRaycaster::closestPoint(const Vec3& p) const {
+Vec3 MeshRaycaster::closestPoint(const Vec3& p, double within) const {
     ClosestPointQuery q{tree_->positions, tree_->indices, p, p};
     const Vec3 local = p - origin_;
     RTCPointQuery query;
@@ -340,10 +359,15 @@ Vec3 MeshRaycaster::closestPoint(const Vec3& p) const {
     query.y = float(local.y);
     query.z = float(local.z);
     query.time = 0.0f;
-    query.radius = HUGE_VALF;
+    // A known bound culls from the start; widened as the triangles' are, for
+    // Embree's single precision.
+    query.radius = within < kInfinity ? float(within * (1.0 + 1e-5)) + 1e-30f : HUGE_VALF;
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(tree_->scene, &query, &context, closerTriangle, &q);
+    // Nothing within the bound (what was found lies beyond it): the bound was wrong.
+    const double bound = within * (1.0 + 1e-5);
+    if (within < kInfinity && !(q.distanceSquared <= bound * bound)) return closestPoint(p);
     return q.best;
 }
 

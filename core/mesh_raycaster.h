@@ -56,7 +56,9 @@ public:
 
     bool contains(const Vec3& p) const;
     double distanceToSurface(const Vec3& p) const;
-    Vec3 closestPoint(const Vec3& p) const;  // on the surface
+    // The point of the surface nearest p; within, when known, bounds its
+    // distance and speeds the search (a wrong bound only costs a second search).
+    Vec3 closestPoint(const Vec3& p, double within = kInfinity) const;
     const Bounds3& bounds() const { return bounds_; }
 
 private:

@@ -95,8 +95,8 @@ bool VolumeObject::insideBlocker(const Vec3& p) const {
     return false;
 }
 
-Vec3 VolumeObject::closestRegionBoundary(const Vec3& p) const {
-    Vec3 best = boundary().closestPoint(p);
+Vec3 VolumeObject::closestRegionBoundary(const Vec3& p, const Vec3& nearestOnBoundary) const {
+    Vec3 best = nearestOnBoundary;
     double distance = glm::length(best - p);
     auto consider = [&](const Vec3& q) {
         const double d = glm::length(q - p);

@@ -71,7 +71,9 @@ public:
     bool insideBlocker(const Vec3& p) const;
     // The nearest point of the region p lies in: the boundary, a blocker's surface
     // or, where the density jumps between slabs, the slab's planes.
-    Vec3 closestRegionBoundary(const Vec3& p) const;
+    Vec3 closestRegionBoundary(const Vec3& p) const { return closestRegionBoundary(p, boundary().closestPoint(p)); }
+    // The same when the boundary's nearest point to p is known.
+    Vec3 closestRegionBoundary(const Vec3& p, const Vec3& nearestOnBoundary) const;
     // Distance to the first blocker surface along the ray, or infinity.
     double firstBlockerHit(const Vec3& origin, const Vec3& dir) const;
 

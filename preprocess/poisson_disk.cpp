@@ -17,8 +17,10 @@ struct Fragment {
     }
 };
 
-// Samples binned into cubic cells, a dense grid of linked lists (no hashing, no
-// per-cell allocation). anyNear visits every sample that can lie within reach.
+// Disks binned into cubic cells, a dense grid of linked lists (no hashing, no
+// per-cell allocation). anyNear visits every disk that can lie within reach.
+// Each list node holds its disk (centre and radius), so that a visit reads one
+// place in memory, not a link and then the disk.
 class SampleGrid {
 public:
     SampleGrid(const Bounds3& bounds, double cell) : origin_(bounds.min), cell_(cell) {
@@ -28,27 +30,26 @@ public:
         dims_ = glm::ivec3(glm::floor(extent / cell_)) + 1;
         head_.assign(size_t(dims_.x) * dims_.y * dims_.z, -1);
     }
-    void insert(const Vec3& p, int32_t index) {
+    void insert(const Vec3& p, double radius) {
         const size_t c = flat(cellOf(p));
-        if (next_.size() <= size_t(index)) next_.resize(size_t(index) + 1, -1);
-        next_[index] = head_[c];
-        head_[c] = index;
+        nodes_.push_back({glm::dvec4(p, radius), head_[c]});
+        head_[c] = int32_t(nodes_.size() - 1);
     }
-    // Calls predicate(sample) for the samples in the cells within reach of p, the
+    // Calls predicate(disk) for the disks in the cells within reach of p, the
     // cell of p first (where a conflict or a covering disk is most likely), until it says yes.
     template <class F>
     bool anyNear(const Vec3& p, double reach, const F& predicate) const {
         const glm::ivec3 c = cellOf(p);
-        for (int32_t i = head_[flat(c)]; i >= 0; i = next_[i])
-            if (predicate(uint32_t(i))) return true;
+        for (int32_t i = head_[flat(c)]; i >= 0; i = nodes_[i].next)
+            if (predicate(nodes_[i].disk)) return true;
         const int k = int(std::ceil(reach / cell_));
         const glm::ivec3 lo = glm::max(c - k, glm::ivec3(0)), hi = glm::min(c + k, dims_ - 1);
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
                 for (int x = lo.x; x <= hi.x; ++x) {
                     if (x == c.x && y == c.y && z == c.z) continue;
-                    for (int32_t i = head_[flat({x, y, z})]; i >= 0; i = next_[i])
-                        if (predicate(uint32_t(i))) return true;
+                    for (int32_t i = head_[flat({x, y, z})]; i >= 0; i = nodes_[i].next)
+                        if (predicate(nodes_[i].disk)) return true;
                 }
         return false;
     }
@@ -65,7 +66,12 @@ private:
     Vec3 origin_;
     double cell_;
     glm::ivec3 dims_;
-    std::vector<int32_t> head_, next_;
+    struct Node {
+        glm::dvec4 disk;  // centre, radius
+        int32_t next;
+    };
+    std::vector<int32_t> head_;
+    std::vector<Node> nodes_;
 };
 
 // Radii vary by a factor of four. One grid sized for the largest radius would make
@@ -82,7 +88,7 @@ public:
             if (upper >= maxRadius) break;
         }
     }
-    void insert(const Vec3& p, double radius, int32_t index) { grids_[octave(radius)].insert(p, index); }
+    void insert(const Vec3& p, double radius) { grids_[octave(radius)].insert(p, radius); }
     template <class F>
     bool anyNear(const Vec3& p, double ownReach, const F& predicate) const {
         for (size_t k = 0; k < grids_.size(); ++k)
@@ -124,11 +130,8 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
     MultiscaleGrid grid(bounds, *minIt, *maxIt);
     Rng rng(seed, 0x9d5c);
 
-    // The distance tests read a compact copy (centre and radius in 32 bytes, contiguous).
-    std::vector<glm::dvec4> disks;
     auto conflicts = [&](const Vec3& x, double rx) {
-        return grid.anyNear(x, rx, [&](uint32_t i) {
-            const glm::dvec4& q = disks[i];
+        return grid.anyNear(x, rx, [&](const glm::dvec4& q) {
             const double r = std::max(rx, q.w);
             const Vec3 d = x - Vec3(q);
             return glm::dot(d, d) < r * r;
@@ -136,8 +139,7 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
     };
     // A disk is convex, so it covers a triangle when it holds all three corners.
     auto covered = [&](const Fragment& f) {
-        return grid.anyNear(f.p[0], 0.0, [&](uint32_t i) {
-            const glm::dvec4& q = disks[i];
+        return grid.anyNear(f.p[0], 0.0, [&](const glm::dvec4& q) {
             const double r2 = q.w * q.w;
             for (const Vec3& c : f.p) {
                 const Vec3 d = c - Vec3(q);
@@ -197,13 +199,15 @@ std::vector<DiskSample> poissonDiskSample(const RadiusSurface& surface, uint64_t
         }
         const Vec3 x = f.p[0] + u * (f.p[1] - f.p[0]) + v * (f.p[2] - f.p[0]);
         const double rx = f.r[0] + u * (f.r[1] - f.r[0]) + v * (f.r[2] - f.r[0]);
+        // No disk covered f before the dart, so only the dart's own disk can now.
+        bool coveredNow = false;
         if (!conflicts(x, rx)) {
-            grid.insert(x, rx, int32_t(samples.size()));
+            grid.insert(x, rx);
             samples.push_back({x, rx});
-            disks.emplace_back(x, rx);
             if (samples.size() >= maxSamples) break;
+            coveredNow = std::all_of(f.p, f.p + 3, [&](const Vec3& c) { return glm::dot(c - x, c - x) < rx * rx; });
         }
-        if (covered(f) || f.longestEdge() < finestEdge) continue;
+        if (coveredNow || f.longestEdge() < finestEdge) continue;
         // Split into four at the edge midpoints; uncovered children go one level down.
         const Vec3 m01 = 0.5 * (f.p[0] + f.p[1]), m12 = 0.5 * (f.p[1] + f.p[2]), m20 = 0.5 * (f.p[2] + f.p[0]);
         const double r01 = 0.5 * (f.r[0] + f.r[1]), r12 = 0.5 * (f.r[1] + f.r[2]), r20 = 0.5 * (f.r[2] + f.r[0]);

@@ -20,15 +20,18 @@ namespace {
 // surface, not the flatness of one triangle, but stay well inside the large faces
 // of a box. The probe sits at least one step deep, under p when p is shallower:
 // a sideways step from just under a convex surface would leave the object.
-BoundaryBall boundaryBall(const VolumeObject& object, const Vec3& p, double curvatureStep) {
+// nearest is the boundary's point nearest p; it bounds the probes' distances,
+// which speeds their searches.
+BoundaryBall boundaryBall(const VolumeObject& object, const Vec3& p, const Vec3& nearest, double curvatureStep) {
     const MeshRaycaster& boundary = object.boundary();
     auto towardSurface = [&](const Vec3& x, double& distance) {
-        const Vec3 offset = boundary.closestPoint(x) - x;
+        const Vec3 offset = boundary.closestPoint(x, glm::length(nearest - x)) - x;
         distance = glm::length(offset);
         return distance > 0.0 ? offset / distance : Vec3(0.0);
     };
-    double depth = 0.0;
-    const Vec3 n = towardSurface(p, depth);
+    const Vec3 offset = nearest - p;
+    const double depth = glm::length(offset);
+    const Vec3 n = depth > 0.0 ? offset / depth : Vec3(0.0);
     BoundaryBall ball;
     if (!(depth > 0.0)) return ball;
     ball.normal = glm::vec3(n);
@@ -110,6 +113,7 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const DiskSample& d = kept[i];
             const size_t k = base + i;
+            const Vec3 onBoundary = published ? d.position : object.boundary().closestPoint(d.position);
             described.positions[i] = d.position;
             set.positions[k] = glm::vec3(d.position);
             set.radii[k] = float(d.radius);
@@ -130,7 +134,7 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
                     region = glm::vec2(float(std::max(slab->lo, -1e30)), float(std::min(slab->hi, 1e30)));
                     regionKey = std::bit_cast<uint32_t>(region.x);  // one key per slab
                 }
-                const Vec3 nearest = object.closestRegionBoundary(d.position);
+                const Vec3 nearest = object.closestRegionBoundary(d.position, onBoundary);
                 image = 2.0 * nearest - d.position;
                 const double across =
                     regionThickness(object, slab, nearest, d.position, kThinReach * kMostWidening * width);
@@ -146,7 +150,7 @@ DescribedSamples describeSamples(const VolumeObject& object, const std::vector<D
             set.widths[k] = width;
             set.region[k] = region;
             set.image[k] = glm::vec3(image);
-            set.boundary[k] = published ? BoundaryBall{} : boundaryBall(object, d.position, curvatureStep);
+            set.boundary[k] = published ? BoundaryBall{} : boundaryBall(object, d.position, onBoundary, curvatureStep);
             described.weighted[i] = {glm::vec3(d.position), glm::vec3(image), width, regionKey, thickness};
         }
     });

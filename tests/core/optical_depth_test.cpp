@@ -253,5 +253,21 @@ TEST(ClosestPoint, CubeAndSphereInClosedForm) {
     EXPECT_LT(glm::length(sphere.boundary().closestPoint(Vec3(40, 0, 0)) - Vec3(1, 0, 0)), 1e-3);
 }
 
+// A bound on the distance only speeds the search: with a true bound (the
+// distance to any surface point) and with one too small, the same point.
+TEST(ClosestPoint, ABoundChangesNothingButTheSearch) {
+    std::vector<std::string> warnings;
+    const VolumeObject sphere(test::simpleObject(test::modelsDir() / "sphere.obj", 1.0), warnings);
+    const MeshRaycaster& boundary = sphere.boundary();
+    Rng rng(12, 5);
+    for (int i = 0; i < 500; ++i) {
+        const Vec3 p = 2.4 * (Vec3(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5);
+        const Vec3 exact = boundary.closestPoint(p);
+        const Vec3 elsewhere = boundary.closestPoint(p + Vec3(0.05, -0.03, 0.02));
+        EXPECT_EQ(boundary.closestPoint(p, glm::length(elsewhere - p)), exact) << i;
+        EXPECT_EQ(boundary.closestPoint(p, 0.1 * glm::length(exact - p)), exact) << i;
+    }
+}
+
 }  // namespace
 }  // namespace lucent
