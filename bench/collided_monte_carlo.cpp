@@ -46,8 +46,9 @@ public:
         const Bounds3& sources = u_.sources();
         if (!(sources.min.x <= sources.max.x) || !(majorant_ > 0.0)) return 0.0;
         const double start = depth_(point);
-        double score = nextAmongSources(random, point);
-        std::vector<Particle> stack{{point, random.direction(), 1.0, 1.0}};
+        double score = nextAmongSources(random, point, u_.sourceCone(point));
+        thread_local std::vector<Particle> stack;
+        stack.assign(1, {point, random.direction(), 1.0, 1.0});
         while (!stack.empty()) {
             Particle particle = stack.back();
             stack.pop_back();
@@ -63,9 +64,8 @@ private:
         bool split = false;         // a copy yet to be tested for a collision where it was split off
     };
 
-    // The sources' uncollided flux at x, by one direction in their cone.
-    double uncollided(Random& random, const Vec3& x) const {
-        const UnfoldedProblem::Cone cone = u_.sourceCone(x);
+    // The sources' uncollided flux at x, by one direction in their cone from x.
+    double uncollided(Random& random, const Vec3& x, const UnfoldedProblem::Cone& cone) const {
         return coneShare(cone) * u_.emission(x, random.inCone(cone));
     }
 
@@ -73,8 +73,7 @@ private:
     // the sources: int over the sources along one direction of their cone of
     // sigma_s e^{-tau} times the uncollided flux, by one point drawn
     // uniformly along the pieces among them.
-    double nextAmongSources(Random& random, const Vec3& x) const {
-        const UnfoldedProblem::Cone cone = u_.sourceCone(x);
+    double nextAmongSources(Random& random, const Vec3& x, const UnfoldedProblem::Cone& cone) const {
         const Vec3 w = random.inCone(cone);
         double t0 = 0.0, end = kInfinity;
         if (!clipToBox(u_.sources(), x, w, t0, end)) return 0.0;
@@ -99,7 +98,8 @@ private:
                 continue;
             }
             const double collided = p.r->sigmaS * std::exp(-(p.tau + p.r->sigmaT * pick));
-            return coneShare(cone) * length * collided * uncollided(random, x + w * (p.t0 + pick));
+            const Vec3 y = x + w * (p.t0 + pick);
+            return coneShare(cone) * length * collided * uncollided(random, y, u_.sourceCone(y));
         }
         return 0.0;
     }
@@ -140,8 +140,10 @@ private:
             const double albedo = r->sigmaS / r->sigmaT;
             if (!(albedo > 0.0)) return;
             p.weight *= albedo;
-            if (r->source <= 0.0) score += p.weight * uncollided(random, p.x);  // among the sources: scored before
-            score += p.weight * nextAmongSources(random, p.x);
+            const UnfoldedProblem::Cone cone = u_.sourceCone(p.x);
+            if (r->source <= 0.0)
+                score += p.weight * uncollided(random, p.x, cone);  // among the sources: scored before
+            score += p.weight * nextAmongSources(random, p.x, cone);
             if (p.weight < 0.05 / p.importance) {  // light below its place's share
                 if (random() >= 0.25) return;
                 p.weight *= 4.0;

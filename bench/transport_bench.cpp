@@ -43,6 +43,13 @@ std::string format(const char* f, double v) {
     return buffer;
 }
 
+// A point as the tables print it: (x, y, z).
+std::string pointLabel(const Vec3& x) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof buffer, "(%g, %g, %g)", x.x, x.y, x.z);
+    return buffer;
+}
+
 double peakResidentMiB() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -147,9 +154,7 @@ void kobayashi(ResultsRecord& out, const std::vector<int>& problems, const std::
                         lines.push_back(row);
                     }
                 }
-                const Vec3& w = p.points[at];
-                char where[64];
-                std::snprintf(where, sizeof where, "(%g, %g, %g)", w.x, w.y, w.z);
+                const std::string where = pointLabel(p.points[at]);
                 out.tableRow(
                     {std::to_string(n), which,
                      std::to_string(p.cells[0]) + "x" + std::to_string(p.cells[1]) + "x" + std::to_string(p.cells[2]),
@@ -186,10 +191,7 @@ void convergence(ResultsRecord& out, const std::string& file, const std::vector<
         file.c_str(), converged.directions, mode.c_str());
     std::vector<std::string> header{"point", "N = " + std::to_string(converged.directions) + " " + mode};
     std::vector<std::vector<std::string>> rows(converged.points.size());
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const Vec3& x = converged.points[i];
-        rows[i] = {format("(%g, ", x.x) + format("%g, ", x.y) + format("%g)", x.z), format("%.4g", truth.flux[i])};
-    }
+    for (size_t i = 0; i < rows.size(); ++i) rows[i] = {pointLabel(converged.points[i]), format("%.4g", truth.flux[i])};
     std::vector<std::string> times{"time (s)", format("%.1f", truth.seconds)};
     for (int n : directions)
         for (const auto how : {TransportProblem::Uncollided::Swept, TransportProblem::Uncollided::Marched}) {
