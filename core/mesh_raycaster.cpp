@@ -25,49 +25,36 @@ RTCDevice sharedDevice() {
     return device;
 }
 
-// Collects every hit along the ray and rejects each, so traversal goes on to the end.
-// Each hit's plane is fetched into the cache as the hit is found, so that it is
-// there when the crossing is computed after the traversal (it was a cache miss
-// on most hits: the hits' faces are scattered over the mesh).
+// Collects every hit along a ray and rejects each, so traversal goes on to the
+// end; a hit goes to the list of its ray, which the ray's id names (0 for a
+// single ray, its place in a packet). Each hit's plane is fetched into the cache
+// as the hit is found, so that it is there when the crossing is computed after
+// the traversal (it was a cache miss on most hits: their faces are scattered
+// over the mesh).
 struct CollectingContext {
     RTCIntersectContext context;
-    std::vector<uint32_t>* faces;
-    const void* planes;  // MeshRaycaster::Tree::Plane[]
+    std::vector<uint32_t>* faces;  // one list a ray
+    const void* planes;            // MeshRaycaster::Tree::Plane[]
     size_t planeSize;
 };
-
-void prefetchPlane(const void* planes, size_t planeSize, uint32_t face) {
-    __builtin_prefetch(static_cast<const char*>(planes) + size_t(face) * planeSize);
-}
 
 void collectHit(const RTCFilterFunctionNArguments* args) {
     auto* collecting = reinterpret_cast<CollectingContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
         const uint32_t face = RTCHitN_primID(args->hit, args->N, i);
-        prefetchPlane(collecting->planes, collecting->planeSize, face);
-        collecting->faces->push_back(face);
+        __builtin_prefetch(static_cast<const char*>(collecting->planes) + size_t(face) * collecting->planeSize);
+        collecting->faces[RTCRayN_id(args->ray, args->N, i)].push_back(face);
         args->valid[i] = 0;
     }
 }
 
-// The same for a packet: each hit goes to the list of its ray, which the ray's id names.
-struct PacketCollectingContext {
-    RTCIntersectContext context;
-    std::vector<uint32_t>* faces;
-    const void* planes;
-    size_t planeSize;
-};
-
-void collectHitByRayId(const RTCFilterFunctionNArguments* args) {
-    auto* collecting = reinterpret_cast<PacketCollectingContext*>(args->context);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] == 0) continue;
-        const uint32_t face = RTCHitN_primID(args->hit, args->N, i);
-        prefetchPlane(collecting->planes, collecting->planeSize, face);
-        collecting->faces[RTCRayN_id(args->ray, args->N, i)].push_back(face);
-        args->valid[i] = 0;
-    }
+void startCollecting(CollectingContext& c, std::vector<uint32_t>* faces, const void* planes, size_t planeSize) {
+    rtcInitIntersectContext(&c.context);
+    c.context.filter = collectHit;
+    c.faces = faces;
+    c.planes = planes;
+    c.planeSize = planeSize;
 }
 
 // An Embree ray from origin (relative to the box centre Embree's vertices are
@@ -169,11 +156,7 @@ void MeshRaycaster::crossings(const Vec3& origin, const Vec3& dir, std::vector<C
     thread_local std::vector<uint32_t> faces;
     faces.clear();
     CollectingContext collecting;
-    rtcInitIntersectContext(&collecting.context);
-    collecting.context.filter = collectHit;
-    collecting.faces = &faces;
-    collecting.planes = tree_->planes.data();
-    collecting.planeSize = sizeof(Tree::Plane);
+    startCollecting(collecting, &faces, tree_->planes.data(), sizeof(Tree::Plane));
     RTCRayHit query = rayQuery(origin - origin_, dir, 0.0);
     rtcIntersect1(tree_->scene, &collecting.context, &query);
     toCrossings(faces, origin, dir, out);
@@ -242,13 +225,9 @@ void MeshRaycaster::insideIntervals(std::span<const Vec3> origins, std::span<con
         throw Error("a ray packet holds at most " + std::to_string(kPacket) +
                     " rays, each with an origin, a direction and an output");
     thread_local std::array<std::vector<uint32_t>, kPacket> faces;
-    PacketCollectingContext collecting;
-    rtcInitIntersectContext(&collecting.context);
+    CollectingContext collecting;
+    startCollecting(collecting, faces.data(), tree_->planes.data(), sizeof(Tree::Plane));
     collecting.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    collecting.context.filter = collectHitByRayId;
-    collecting.faces = faces.data();
-    collecting.planes = tree_->planes.data();
-    collecting.planeSize = sizeof(Tree::Plane);
     alignas(64) int valid[kPacket];
     alignas(64) RTCRayHit16 packet{};
     for (size_t k = 0; k < kPacket; ++k) {
