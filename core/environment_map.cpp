@@ -141,7 +141,7 @@ double radicalInverseBase2(uint32_t k) {
 }  // namespace
 
 EnvironmentMap::EnvironmentMap(Image pixels, double scale, const glm::dmat3& rotation)
-    : width_(pixels.width), height_(pixels.height), rotation_(rotation) {
+    : width_(pixels.width), height_(pixels.height), scale_(scale), rotation_(rotation) {
     texels_.resize(size_t(width_) * height_);
     texelProbability_.resize(texels_.size());
     double total = 0.0;

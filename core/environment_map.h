@@ -54,11 +54,13 @@ public:
 
     int width() const { return width_; }
     int height() const { return height_; }
+    double scale() const { return scale_; }  // what the file's texels were multiplied by
 
 private:
     int texelOf(const Vec3& toward) const;  // the texel's index
 
     int width_ = 0, height_ = 0;
+    double scale_ = 1.0;
     std::vector<Rgb> texels_;               // scaled radiance, row-major, row 0 the top
     glm::dmat3 rotation_{1.0};              // map directions to world directions
     std::vector<double> rowCdf_;            // height_ + 1 entries

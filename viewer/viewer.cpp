@@ -313,16 +313,26 @@ public:
         for (size_t i = 0; i < loaded.objects.size(); ++i)
             renderer_.addObject(translucentObjectFor(loaded.objects[i], loaded.samples[i]));
         if (scene.environment) {
-            // At scale 1, so that any scale the panel or the script sets scales them.
-            EnvironmentDesc unscaled = *scene.environment;
-            unscaled.scale = 1.0;
-            useEnvironment(*EnvironmentMap::load(unscaled));
+            // At scale 1, so that any scale the panel or the script sets scales
+            // them: the map the scene loaded, unscaled, unless its scale 0 left
+            // nothing to unscale.
+            const std::shared_ptr<const EnvironmentMap>& map = loaded.environment;
+            if (map && map->scale() > 0.0) {
+                useEnvironment(*map, 1.0 / map->scale());
+            } else {
+                EnvironmentDesc unscaled = *scene.environment;
+                unscaled.scale = 1.0;
+                useEnvironment(*EnvironmentMap::load(unscaled));
+            }
         }
     }
 
-    void useEnvironment(const EnvironmentMap& map) {
+    // The map's lights, their power times factor.
+    void useEnvironment(const EnvironmentMap& map, double factor = 1.0) {
         environmentLights_ = map.asDirectionalLights(SsOptions().environmentLights);
         gridEnvironmentLights_ = map.asDirectionalLights(kGridEnvironmentLights);
+        for (auto* lights : {&environmentLights_, &gridEnvironmentLights_})
+            for (Light& l : *lights) l.power *= factor;
     }
 
     // The map `environment load` or the panel asked for, in place of the current one.

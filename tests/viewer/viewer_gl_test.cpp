@@ -65,13 +65,14 @@ std::string radianceFile(int width, int height, int x, int y, double value) {
     return text;
 }
 
-// The environment as ss draws it, traced and from the SH, scaled and turned live.
+// The environment as ss draws it, traced and from the SH, scaled and turned live
+// (the scene's own scale, 2.5, taken from the map the scene loaded).
 TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
     test::ScratchDir dir;
-    dir.write("sky.hdr", radianceFile(4, 2, 0, 0, 20.0));  // a sun above the horizon towards +x
+    dir.write("sky.hdr", radianceFile(4, 2, 0, 0, 8.0));  // a sun above the horizon towards +x
     const auto scene = dir.write("scene.json", R"({
       "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 64, "height": 64},
-      "lights": [{"type": "environment", "file": "sky.hdr"}],
+      "lights": [{"type": "environment", "file": "sky.hdr", "scale": 2.5}],
       "objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
                                                    R"(",
                    "medium": {"sigma_t": 3.0, "albedo": 0.75}, "samples": "s.lsf"}],
