@@ -19,8 +19,7 @@ double luminance(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.07
 
 }  // namespace
 
-ImageError compareImages(const Image& test, const Image& reference, int margin) {
-    checkSameSize(test, reference);
+std::vector<bool> interiorPixels(const Image& reference, int margin) {
     float peak = 0.0f;
     for (const auto& p : reference.pixels) peak = std::max({peak, p.r, p.g, p.b});
     const float threshold = 1e-3f * peak;
@@ -29,15 +28,25 @@ ImageError compareImages(const Image& test, const Image& reference, int margin) 
         const auto& p = reference.at(x, y);
         return p.r > threshold && p.g > threshold && p.b > threshold;
     };
+    std::vector<bool> interior(reference.pixels.size(), false);
+    for (int y = 0; y < reference.height; ++y)
+        for (int x = 0; x < reference.width; ++x) {
+            bool in = inMask(x, y);
+            for (int dy = -margin; dy <= margin && in; ++dy)
+                for (int dx = -margin; dx <= margin && in; ++dx) in = inMask(x + dx, y + dy);
+            interior[size_t(y) * reference.width + x] = in;
+        }
+    return interior;
+}
+
+ImageError compareImages(const Image& test, const Image& reference, int margin) {
+    checkSameSize(test, reference);
+    const std::vector<bool> interior = interiorPixels(reference, margin);
     double squared = 0.0, relative = 0.0, sumTest = 0.0, sumReference = 0.0;
     size_t n = 0;
     for (int y = 0; y < reference.height; ++y)
         for (int x = 0; x < reference.width; ++x) {
-            if (!inMask(x, y)) continue;
-            bool interior = true;
-            for (int dy = -margin; dy <= margin && interior; ++dy)
-                for (int dx = -margin; dx <= margin && interior; ++dx) interior = inMask(x + dx, y + dy);
-            if (!interior) continue;
+            if (!interior[size_t(y) * reference.width + x]) continue;
             for (int c = 0; c < 3; ++c) {
                 const double t = test.at(x, y)[c], r = reference.at(x, y)[c];
                 squared += (t - r) * (t - r);

@@ -1,6 +1,8 @@
 #pragma once
 // The error metric of DESIGN.md between an image and its reference, over the
 // pixels where the reference exceeds 1e-3 of its maximum (all three channels).
+#include <vector>
+
 #include "core/image.h"
 
 namespace lucent {
@@ -11,6 +13,10 @@ struct ImageError {
     double meanRatio = 0.0;                  // mean of test / mean of reference: the overall bias
     size_t pixels = 0;                       // pixels compared
 };
+
+// The pixels compareImages compares: where the reference exceeds 1e-3 of its
+// maximum in all three channels, with every pixel within margin pixels so too.
+std::vector<bool> interiorPixels(const Image& reference, int margin);
 
 // Throws Error if the sizes differ. With awayFromSilhouette, pixels that have a
 // pixel outside the mask within `margin` pixels are left out too.

@@ -1,6 +1,7 @@
-# Renders a Lucent scene's single scattering with Blender's Cycles, the
-# production path tracer a user of this machine would pick instead of Lucent
-# (issue: "the peer"). Run by lucent-bench-peer, never by the tests:
+# Renders a Lucent scene with Blender's Cycles, the production path tracer a
+# user of this machine would pick instead of Lucent: its single scattering
+# (volume_bounces 0) or its full transport. Run by lucent-bench-peer
+# (bench/cycles_peer.cpp), never by the tests:
 #
 #   blender -b --factory-startup -noaudio --python-exit-code 1 \
 #           --python bench/cycles/render_scene.py -- PEER_SCENE.json
@@ -9,10 +10,13 @@
 #   {"mesh": "mesh.obj", "camera": {"position", "target", "up", "fov_y", "width", "height"},
 #    "lights": [{"position": [x, y, z], "intensity": [r, g, b]}],          W/sr, point lights
 #    "medium": {"sigma_s": [r, g, b], "sigma_a": [r, g, b], "g": g},        1/length
-#    "samples": [1, 2, 4], "seed": 1, "threads": 2, "output": "dir"}
-# For each sample count it writes dir/cycles-N.pfm (linear RGB) and a row
-# "N,T" of dir/cycles-times.csv, with T the time of Cycles' render call alone: Blender's start and the scene's
-# set-up are left out, as Lucent's preprocessing is left out of its frame time.
+#    "volume_bounces": 0,                     0: single scattering; else the most a path takes
+#    "renders": [{"name": "n16", "samples": 16, "seed": 3}, ...], "threads": 2, "output": "dir"}
+# After one untimed render of a sample (Cycles' first render sets up its
+# kernels and BVH), each render writes dir/cycles-NAME.pfm (linear RGB) and a
+# row "NAME,T" of dir/cycles-times.csv, with T the time of Cycles' render call
+# alone: Blender's start and the scene's set-up are left out, as Lucent's
+# loading is left out of its times.
 import json
 import math
 import sys
@@ -134,31 +138,36 @@ def main():
     cy.device = 'CPU'
     cy.use_adaptive_sampling = False
     cy.use_denoising = False
-    cy.seed = spec['seed']
-    # Single scattering: no bounce after the first volume scattering event, whose
-    # light comes by next-event estimation; the boundary crossings are free.
-    cy.max_bounces = 64
-    cy.volume_bounces = 0
+    # volume_bounces 0 is single scattering: no bounce after the first volume
+    # scattering event, whose light comes by next-event estimation. The boundary
+    # crossings are free (transparent bounces).
+    bounces = int(spec['volume_bounces'])
+    cy.max_bounces = max(64, bounces)
+    cy.volume_bounces = bounces
     cy.diffuse_bounces = cy.glossy_bounces = cy.transmission_bounces = 0
     cy.transparent_max_bounces = 64
     cy.sample_clamp_direct = cy.sample_clamp_indirect = 0.0
     cy.filter_width = 0.01  # a sample at each pixel's centre region, as Lucent's pixel centres
 
+    cy.samples, cy.seed = 1, 0
+    bpy.ops.render.render()  # untimed: the first render sets Cycles up
+
     times = open('%s/cycles-times.csv' % spec['output'], 'w')
-    times.write('samples,render_seconds\n')
-    for n in spec['samples']:
-        cy.samples = n
-        exr = '%s/cycles-%d.exr' % (spec['output'], n)
+    times.write('name,render_seconds\n')
+    for render in spec['renders']:
+        cy.samples, cy.seed = int(render['samples']), int(render['seed'])
+        name = render['name']
+        exr = '%s/cycles-%s.exr' % (spec['output'], name)
         start = time.perf_counter()
         bpy.ops.render.render()
         seconds = time.perf_counter() - start
         bpy.data.images['Render Result'].save_render(filepath=exr)
         image = bpy.data.images.load(exr)
-        write_pfm('%s/cycles-%d.pfm' % (spec['output'], n), image)
+        write_pfm('%s/cycles-%s.pfm' % (spec['output'], name), image)
         bpy.data.images.remove(image)
-        times.write('%d,%.6f\n' % (n, seconds))
+        times.write('%s,%.6f\n' % (name, seconds))
         times.flush()
-        print('lucent-peer: samples %d render_seconds %.4f' % (n, seconds), flush=True)
+        print('lucent-peer: %s, %d samples: render_seconds %.4f' % (name, render['samples'], seconds), flush=True)
     times.close()
 
 
