@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Lucent builds, runs and tests with.
 # Root runs apt-get directly; anyone else goes through sudo.
-#   --peer   also Blender, whose Cycles lucent-bench-peer measures ss against
+#   --peer   also Blender, whose Cycles lucent-bench-peer measures Lucent against
 #            (a benchmark's peer, never needed by the tests)
 set -euo pipefail
 

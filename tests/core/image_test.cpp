@@ -133,5 +133,28 @@ TEST(ImageCompare, TheNoiseOfATwiceRenderedReferenceIsTakenOut) {
     EXPECT_THROW(luminanceRelativeRmse(Image(1, 1), a, b), Error);
 }
 
+TEST(ImageCompare, InteriorPixelsLieTheMarginInsideTheLitOnes) {
+    // A lit 6x6 square at (2..7, 3..8) of a 12x12 image, one pixel of it lit
+    // below 1e-3 of the peak in one channel: a hole the margin grows around too.
+    Image reference(12, 12);
+    for (int y = 3; y < 9; ++y)
+        for (int x = 2; x < 8; ++x) reference.at(x, y) = glm::vec3(1.0f);
+    reference.at(7, 8) = glm::vec3(1.0f, 1.0f, 5e-4f);
+    auto lit = [&](int margin) {
+        const std::vector<bool> in = interiorPixels(reference, margin);
+        int n = 0;
+        for (bool b : in) n += b;
+        return n;
+    };
+    EXPECT_EQ(lit(0), 35);
+    // One pixel in: the 4x4 square at (3..6, 4..7), but for (6, 7), next to the hole.
+    EXPECT_EQ(lit(1), 15);
+    EXPECT_TRUE(interiorPixels(reference, 1)[4 * 12 + 3]);
+    EXPECT_FALSE(interiorPixels(reference, 1)[7 * 12 + 6]);
+    // Two pixels in: the 2x2 square at (4..5, 5..6), but for (5, 6), two from the hole.
+    EXPECT_EQ(lit(2), 3);
+    EXPECT_EQ(lit(3), 0);
+}
+
 }  // namespace
 }  // namespace lucent
