@@ -255,8 +255,8 @@ std::vector<Measured> gridMethods(const PeerOptions& o, LoadedScene& scene, doub
     stopwatch.restart();
     const Image lblImage = renderSingleScattering(scene, settings, SsOptions{}, {lblGrid}, backend);
     const double lblFrame = stopwatch.seconds();
-    rows.push_back({"lbl", "grid " + std::to_string(hs.resolution) + ", solve " + std::to_string(lblSolve).substr(0, 4) +
-                               " s",
+    rows.push_back({"lbl",
+                    "grid " + std::to_string(hs.resolution) + ", solve " + std::to_string(lblSolve).substr(0, 4) + " s",
                     cycles.error(lblImage), cycles.meanRatio(lblImage), preprocessSeconds + lblSolve + lblFrame,
                     newViewSeconds(o, scene, lblGrid, nullptr)});
 
@@ -319,8 +319,8 @@ void full(const PeerOptions& o, const FullSettings& f, ResultsRecord& out) {
         "(lbl, mdom: its frame, with mdom's grid baked for the new eye; path: its render). Cycles' time to an error "
         "comes from its largest sample count (time x (its error / the error)^2); its time is its render call, "
         "the same for a new view.\n",
-        std::filesystem::path(o.sceneFile).filename().c_str(), o.distance, f.truthSamples, f.truthSamples / 2,
-        o.frames, o.warmup);
+        std::filesystem::path(o.sceneFile).filename().c_str(), o.distance, f.truthSamples, f.truthSamples / 2, o.frames,
+        o.warmup);
     double preprocessSeconds = -1.0;
     for (int size : f.sizes) {
         LoadedScene scene = peerScene(o, size);
@@ -343,14 +343,14 @@ void full(const PeerOptions& o, const FullSettings& f, ResultsRecord& out) {
             law = {e, c.seconds};
         }
         out.print("\n");
-        out.tableHeader({"method", "setting", "error", "mean ratio", "first image (s)", "new view (s)", "Cycles to that error (s)",
-                         "first image: x Cycles", "new view: x Cycles"},
+        out.tableHeader({"method", "setting", "error", "mean ratio", "first image (s)", "new view (s)",
+                         "Cycles to that error (s)", "first image: x Cycles", "new view: x Cycles"},
                         {false, false, true, true, true, true, true, true, true});
         for (const Measured& m : rows) {
             const double cyclesSeconds = law.secondsTo(m.error);
             out.print("| %s | %s | %.2f%% | %.3f | %.2f | %.3f | %.2f | %.2f | %.1f |\n", m.method.c_str(),
-                      m.setting.c_str(), 100.0 * m.error, m.meanRatio, m.firstImage, m.newView, cyclesSeconds, cyclesSeconds / m.firstImage,
-                      cyclesSeconds / m.newView);
+                      m.setting.c_str(), 100.0 * m.error, m.meanRatio, m.firstImage, m.newView, cyclesSeconds,
+                      cyclesSeconds / m.firstImage, cyclesSeconds / m.newView);
         }
     }
 }
