@@ -1,6 +1,7 @@
 #include "bench/cycles_peer.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 

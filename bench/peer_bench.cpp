@@ -25,6 +25,7 @@
 // (scripts/install-deps.sh --peer); the tests never need it.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
@@ -174,6 +175,9 @@ struct CyclesRun {
     std::vector<CyclesImage> sweep;
     std::vector<bool> interior;
     Image masked(Image image) const {
+        if (image.pixels.size() != interior.size())
+            throw Error("an image of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                        " pixels against Cycles' truth of another size");
         for (size_t i = 0; i < image.pixels.size(); ++i)
             if (!interior[i]) image.pixels[i] = glm::vec3(0.0f);
         return image;
@@ -204,6 +208,8 @@ CyclesRun runCycles(const PeerOptions& o, const FullSettings& f, const LoadedSce
     for (size_t i = 0; i < truth.pixels.size(); ++i)
         truth.pixels[i] = 0.5f * (images[0].image.pixels[i] + images[1].image.pixels[i]);
     run.interior = interiorPixels(truth, 2);
+    if (std::find(run.interior.begin(), run.interior.end(), true) == run.interior.end())
+        throw Error((dir / "cycles-truth-a.pfm").string(), "Cycles' truth lights no pixel 2 px inside the object");
     run.truthA = run.masked(images[0].image);
     run.truthB = run.masked(images[1].image);
     run.sweep.assign(images.begin() + 2, images.end());
@@ -347,6 +353,11 @@ void full(const PeerOptions& o, const FullSettings& f, ResultsRecord& out) {
                          "Cycles to that error (s)", "first image: x Cycles", "new view: x Cycles"},
                         {false, false, true, true, true, true, true, true, true});
         for (const Measured& m : rows) {
+            if (!(m.error > 0.0)) {  // the truth too noisy to tell (--truth-samples)
+                out.print("| %s | %s | below the truth's noise | %.3f | %.2f | %.3f | - | - | - |\n", m.method.c_str(),
+                          m.setting.c_str(), m.meanRatio, m.firstImage, m.newView);
+                continue;
+            }
             const double cyclesSeconds = law.secondsTo(m.error);
             out.print("| %s | %s | %.2f%% | %.3f | %.2f | %.3f | %.2f | %.2f | %.1f |\n", m.method.c_str(),
                       m.setting.c_str(), 100.0 * m.error, m.meanRatio, m.firstImage, m.newView, cyclesSeconds,
