@@ -30,22 +30,48 @@ uint32_t owenScramble(uint32_t x, uint32_t seed) { return reverseBits(lowerBitsH
 }  // namespace
 
 PathSampler::PathSampler(uint64_t seed, uint64_t pixel) : rng_(seed, pixel), stratified_(true) {
-    for (int f = 0; f < kStratifiedFlights; ++f) {
+    jointShuffle_ = uint32_t(rng_.nextU64());
+    for (uint32_t& s : jointScramble_) s = uint32_t(rng_.nextU64());
+    for (size_t f = 0; f < shuffle_.size(); ++f) {
         const uint64_t bits = rng_.nextU64();
         shuffle_[f] = uint32_t(bits);
         scramble_[f] = uint32_t(bits >> 32);
     }
 }
 
-double PathSampler::flightUniform() {
-    if (!stratified_ || flights_ >= kStratifiedFlights) return rng_.uniform();
-    const int f = flights_++;
-    // The path's place in this flight's shuffle, then its scrambled radical inverse.
-    const uint32_t index = owenScramble(path_, shuffle_[f]);
-    const uint32_t x = owenScramble(reverseBits(index), scramble_[f]);
+double PathSampler::finest(uint32_t x) {
     // Within the finest stratum (2^-32), uniform: no value repeats between pixels.
     // (Rounding may reach 1 itself: kept below it.)
     return std::min((double(x) + rng_.uniform()) * 0x1.0p-32, 0x1.fffffffffffffp-1);
+}
+
+double PathSampler::jointUniform(int d) {
+    // The path's place in the shuffle, then its point's scrambled coordinate.
+    const uint32_t index = owenScramble(path_, jointShuffle_);
+    return finest(owenScramble(sobol(d, index), jointScramble_[d]));
+}
+
+double PathSampler::flightUniform() {
+    if (!stratified_ || flights_ >= kStratifiedFlights) return rng_.uniform();
+    const int f = flights_++;
+    if (f < kJointBounces) return jointUniform(3 * f);
+    // The path's place in this flight's shuffle, then its scrambled radical inverse.
+    const int k = f - kJointBounces;
+    const uint32_t index = owenScramble(path_, shuffle_[k]);
+    return finest(owenScramble(reverseBits(index), scramble_[k]));
+}
+
+void PathSampler::directionUniforms(double& u, double& v) {
+    const int f = flights_ - 1;
+    // Only once for a flight: a second direction there takes plain numbers.
+    if (!stratified_ || f < directions_ || f >= kJointBounces) {
+        u = rng_.uniform();
+        v = rng_.uniform();
+        return;
+    }
+    directions_ = f + 1;
+    u = jointUniform(3 * f + 1);
+    v = jointUniform(3 * f + 2);
 }
 
 }  // namespace lucent

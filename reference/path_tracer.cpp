@@ -43,6 +43,13 @@ bool withinNoiseTarget(const Rgb& sum, const Rgb& sumSquares, int n, double targ
 
 }  // namespace
 
+bool survivesRoulette(Rgb& throughput, PathSampler& rng) {
+    const double keep = std::min(1.0, std::max({throughput.r, throughput.g, throughput.b}) / 0.01);
+    if (rng.uniform() >= keep) return false;
+    throughput /= keep;
+    return true;
+}
+
 Vec3 sampleHenyeyGreenstein(const Vec3& dir, double g, double xi1, double xi2) {
     double cosTheta;
     if (std::abs(g) < 1e-4) {
@@ -202,13 +209,9 @@ Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, 
         // weight of each collision (the collision estimator).
         throughput *= masked(inside->desc().medium.albedo, channel);
         total += throughput * masked(gatherLights(*inside, x, w, rng), channel);
-        // Russian roulette once the path has scattered a few times.
-        if (collisions >= 3) {
-            const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
-            if (rng.uniform() >= keep) break;
-            throughput /= keep;
-        }
-        const double xi1 = rng.uniform(), xi2 = rng.uniform();
+        if (collisions >= 3 && !survivesRoulette(throughput, rng)) break;
+        double xi1, xi2;
+        rng.directionUniforms(xi1, xi2);
         previous = w;
         w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
         tStop = blockerDistance(x, w);
@@ -236,7 +239,8 @@ PathTracer::Exit PathTracer::walk(const Vec3& origin, const Vec3& dir, PathSampl
         inside = c->object;
         exit.weight *= inside->desc().medium.albedo;
         ++exit.collisions;
-        const double xi1 = rng.uniform(), xi2 = rng.uniform();
+        double xi1, xi2;
+        rng.directionUniforms(xi1, xi2);
         w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
     }
 }

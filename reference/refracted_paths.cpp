@@ -87,12 +87,9 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
             throughput *= masked(inside->desc().medium.albedo, channel);
             total += throughput * masked(gatherLightsRefracted(*inside, x, w, rng), channel);
             if (++collisions >= settings.maxScatter) break;
-            if (collisions > 3) {
-                const double keep = std::min(0.95, std::max({throughput.r, throughput.g, throughput.b}));
-                if (rng.uniform() >= keep) break;
-                throughput /= keep;
-            }
-            const double xi1 = rng.uniform(), xi2 = rng.uniform();
+            if (collisions > 3 && !survivesRoulette(throughput, rng)) break;
+            double xi1, xi2;
+            rng.directionUniforms(xi1, xi2);
             w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
             continue;
         }
@@ -123,7 +120,8 @@ PathTracer::Exit PathTracer::refractedWalk(const Vec3& origin, const Vec3& dir, 
             x += *a.collision * w;
             exit.weight *= inside->desc().medium.albedo;
             ++exit.collisions;
-            const double xi1 = rng.uniform(), xi2 = rng.uniform();
+            double xi1, xi2;
+            rng.directionUniforms(xi1, xi2);
             w = sampleHenyeyGreenstein(w, inside->desc().medium.g, xi1, xi2);
             continue;
         }
