@@ -5,6 +5,8 @@
 #include <fstream>
 #include <map>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "core/run_program.h"
 
@@ -20,36 +22,39 @@ void writeObj(const std::filesystem::path& file, const TriangleMesh& mesh) {
     if (!out) throw Error(file.string(), "cannot write");
 }
 
-std::string json3(const Vec3& v) {
-    char b[160];
-    std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x, v.y, v.z);
-    return b;
-}
+nlohmann::json json3(const Vec3& v) { return {v.x, v.y, v.z}; }
 
-// What render_scene.py reads (its header says the format).
+// What render_scene.py reads (its header says the format). Written by a JSON
+// library: a path may hold quotes or backslashes.
 void writeSpec(const std::filesystem::path& file, const std::filesystem::path& dir, const CyclesScene& scene,
                const std::vector<CyclesRender>& renders) {
     const Camera& c = scene.camera;
     const MediumDesc& m = scene.medium;
     const Rgb sigmaS = m.sigmaT * m.albedo, sigmaA = m.sigmaT - sigmaS;
-    std::ofstream spec(file);
-    spec << "{\"mesh\": \"" << (dir / "mesh.obj").string() << "\",\n \"camera\": {\"position\": " << json3(c.position)
-         << ", \"target\": " << json3(c.target) << ", \"up\": " << json3(c.up) << ", \"fov_y\": " << c.fovYDegrees
-         << ", \"width\": " << c.width << ", \"height\": " << c.height << "},\n \"lights\": [";
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light& l = scene.lights[i];
+    nlohmann::json spec = {{"mesh", (dir / "mesh.obj").string()},
+                           {"camera",
+                            {{"position", json3(c.position)},
+                             {"target", json3(c.target)},
+                             {"up", json3(c.up)},
+                             {"fov_y", c.fovYDegrees},
+                             {"width", c.width},
+                             {"height", c.height}}},
+                           {"lights", nlohmann::json::array()},
+                           {"medium", {{"sigma_s", json3(Vec3(sigmaS))}, {"sigma_a", json3(Vec3(sigmaA))}, {"g", m.g}}},
+                           {"volume_bounces", scene.volumeBounces},
+                           {"renders", nlohmann::json::array()},
+                           {"threads", 2},
+                           {"output", dir.string()}};
+    for (const Light& l : scene.lights) {
         if (l.type != Light::Type::Point || l.spot || l.radius != 0.0)
             throw Error(file.string(), "the Cycles peer takes point lights only");
-        spec << (i ? ", " : "") << "{\"position\": " << json3(l.position) << ", \"intensity\": " << json3(Vec3(l.power))
-             << "}";
+        spec["lights"].push_back({{"position", json3(l.position)}, {"intensity", json3(Vec3(l.power))}});
     }
-    spec << "],\n \"medium\": {\"sigma_s\": " << json3(Vec3(sigmaS)) << ", \"sigma_a\": " << json3(Vec3(sigmaA))
-         << ", \"g\": " << m.g << "},\n \"volume_bounces\": " << scene.volumeBounces << ",\n \"renders\": [";
-    for (size_t i = 0; i < renders.size(); ++i)
-        spec << (i ? ", " : "") << "{\"name\": \"" << renders[i].name << "\", \"samples\": " << renders[i].samples
-             << ", \"seed\": " << renders[i].seed << "}";
-    spec << "],\n \"threads\": 2, \"output\": \"" << dir.string() << "\"}\n";
-    if (!spec) throw Error(file.string(), "cannot write");
+    for (const CyclesRender& r : renders)
+        spec["renders"].push_back({{"name", r.name}, {"samples", r.samples}, {"seed", r.seed}});
+    std::ofstream out(file);
+    out << spec.dump(1) << '\n';
+    if (!out) throw Error(file.string(), "cannot write");
 }
 
 // cycles-times.csv: a header, then "name,seconds" per render.

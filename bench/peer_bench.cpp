@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench/cycles_peer.h"
@@ -327,12 +328,17 @@ void full(const PeerOptions& o, const FullSettings& f, ResultsRecord& out) {
         "the same for a new view.\n",
         std::filesystem::path(o.sceneFile).filename().c_str(), o.distance, f.truthSamples, f.truthSamples / 2, o.frames,
         o.warmup);
-    double preprocessSeconds = -1.0;
+    // The samples do not depend on the image's size: made once, for the first.
+    std::optional<SampleSet> samples;
+    double preprocessSeconds = 0.0;
     for (int size : f.sizes) {
         LoadedScene scene = peerScene(o, size);
-        Stopwatch stopwatch;
-        attachSamples(scene, {preprocessObject(scene.objects.front(), qualityPreset("default"))});
-        if (preprocessSeconds < 0.0) preprocessSeconds = stopwatch.seconds();
+        if (!samples) {
+            Stopwatch stopwatch;
+            samples = preprocessObject(scene.objects.front(), qualityPreset("default"));
+            preprocessSeconds = stopwatch.seconds();
+        }
+        attachSamples(scene, {*samples});
         const CyclesRun cycles = runCycles(o, f, scene);
 
         std::vector<Measured> rows = gridMethods(o, scene, preprocessSeconds, cycles);
