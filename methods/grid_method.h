@@ -17,7 +17,7 @@ namespace lucent {
 // The grids take an environment as at most this many directional lights (ss's
 // --env-lights, up to it), since the light scattered twice or more is smooth:
 // under a sky with a sun, lbl and mdom with 16 stay within 2 points of 64, at
-// 41-78% of its solve's time, and with 4 are 13-14% off on the sphere
+// 33-67% of its solve's time, and with 4 are 13-14% off on the sphere
 // (docs/results/environment.md, lucent-bench-environment).
 inline constexpr int kGridEnvironmentLights = 16;
 

@@ -39,7 +39,7 @@ struct PathSettings {
     uint64_t seed = 1;
     int threads = 0;      // 0: all cores
     bool surface = true;  // add the direct Phong surface term at the first front face
-    // Each pixel's paths stratified in their first free flights (PathSampler);
+    // Each pixel's paths stratified in their first bounces (PathSampler);
     // false: independent paths (lucent-bench-path measures the difference).
     bool stratified = true;
     RowShare rows;  // the rows to render; the others stay 0
