@@ -218,12 +218,12 @@ bool MeshRaycaster::intervalsFrom(const std::vector<Crossing>& cs, const Vec3& o
     return !out.empty();
 }
 
-void MeshRaycaster::insideIntervals(std::span<const Vec3> origins, std::span<const Vec3> dirs, double tMax,
-                                    std::span<std::vector<Interval>> out) const {
+void MeshRaycaster::insideIntervals(std::span<const Vec3> origins, std::span<const Vec3> dirs,
+                                    std::span<const double> tMax, std::span<std::vector<Interval>> out) const {
     const size_t count = origins.size();
-    if (count > kPacket || dirs.size() != count || out.size() != count)
+    if (count > kPacket || dirs.size() != count || tMax.size() != count || out.size() != count)
         throw Error("a ray packet holds at most " + std::to_string(kPacket) +
-                    " rays, each with an origin, a direction and an output");
+                    " rays, each with an origin, a direction, a length and an output");
     thread_local std::array<std::vector<uint32_t>, kPacket> faces;
     CollectingContext collecting;
     startCollecting(collecting, faces.data(), tree_->planes.data(), sizeof(Tree::Plane));
@@ -251,7 +251,7 @@ void MeshRaycaster::insideIntervals(std::span<const Vec3> origins, std::span<con
     thread_local std::vector<Crossing> cs;
     for (size_t k = 0; k < count; ++k) {
         toCrossings(faces[k], origins[k], dirs[k], cs);
-        intervalsFrom(cs, origins[k], dirs[k], tMax, out[k], std::nullopt);
+        intervalsFrom(cs, origins[k], dirs[k], tMax[k], out[k], std::nullopt);
     }
 }
 

@@ -38,12 +38,13 @@ public:
     bool insideIntervals(const Vec3& origin, const Vec3& dir, double tMax, std::vector<Interval>& out,
                          std::optional<bool> originInside = std::nullopt) const;
 
-    // The same for up to kPacket rays at once, out[k] for ray k (every span as
-    // long as origins). Rays that run side by side (parallel, from nearby
-    // origins) traverse the tree together as one packet, at a fraction of their
-    // cost one by one: the SH projection's rays, one direction from neighbouring samples.
+    // The same for up to kPacket rays at once, out[k] for ray k up to tMax[k]
+    // (every span as long as origins). Rays that run side by side (parallel or
+    // converging, from nearby origins) traverse the tree together as one packet,
+    // at a fraction of their cost one by one: the SH projection's rays, one
+    // direction from neighbouring samples, and the traced light's.
     static constexpr size_t kPacket = 16;
-    void insideIntervals(std::span<const Vec3> origins, std::span<const Vec3> dirs, double tMax,
+    void insideIntervals(std::span<const Vec3> origins, std::span<const Vec3> dirs, std::span<const double> tMax,
                          std::span<std::vector<Interval>> out) const;
 
     // Distance to the first crossing, or infinity.

@@ -134,12 +134,17 @@ double VolumeObject::densityPathThroughBlockers(const Vec3& origin, const Vec3& 
 }
 
 void VolumeObject::densityPaths(std::span<const Vec3> origins, std::span<const Vec3> dirs, bool throughBlockers,
-                                std::span<double> out) const {
+                                std::span<double> out, std::span<const double> tMax) const {
     thread_local std::array<std::vector<Interval>, MeshRaycaster::kPacket> inside;
+    std::array<double, MeshRaycaster::kPacket> unbounded;
+    if (tMax.empty()) {
+        unbounded.fill(kInfinity);
+        tMax = std::span(unbounded.data(), std::min(origins.size(), unbounded.size()));
+    }
     const size_t count = std::min(origins.size(), inside.size());
-    boundary().insideIntervals(origins, dirs, kInfinity, std::span(inside.data(), origins.size()));
+    boundary().insideIntervals(origins, dirs, tMax, std::span(inside.data(), origins.size()));
     for (size_t k = 0; k < count; ++k) {
-        if (!throughBlockers && !blockers_.empty() && firstBlockerHit(origins[k], dirs[k]) < kInfinity) {
+        if (!throughBlockers && !blockers_.empty() && firstBlockerHit(origins[k], dirs[k]) < tMax[k]) {
             out[k] = kInfinity;
             continue;
         }

@@ -55,11 +55,12 @@ public:
     // The same path with the blockers filled by the medium around them: what the
     // Lucent scheme projects, leaving the blockers' hard shadows to the runtime.
     double densityPathThroughBlockers(const Vec3& origin, const Vec3& dir, double tMax = kInfinity) const;
-    // Either path (throughBlockers picks) to the boundary for up to
-    // MeshRaycaster::kPacket rays, traced as one packet: rays side by side cost a
-    // fraction of their cost one by one (MeshRaycaster::insideIntervals).
+    // Either path (throughBlockers picks) for up to MeshRaycaster::kPacket rays,
+    // traced as one packet: rays side by side cost a fraction of their cost one
+    // by one (MeshRaycaster::insideIntervals). Ray k ends at tMax[k], or at the
+    // boundary when tMax is empty.
     void densityPaths(std::span<const Vec3> origins, std::span<const Vec3> dirs, bool throughBlockers,
-                      std::span<double> out) const;
+                      std::span<double> out, std::span<const double> tMax = {}) const;
 
     bool contains(const Vec3& p) const { return boundary().contains(p); }
     // The shading normal at p on the boundary's face: the runtime's, interpolated

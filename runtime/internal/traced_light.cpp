@@ -4,10 +4,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
+#include "core/mesh_raycaster.h"
 #include "core/refraction.h"
+#include "core/spatial_order.h"
 #include "core/sphere_light.h"
 
 namespace lucent {
@@ -76,6 +79,63 @@ Light unitLightInOwnWorld(const Light& light, const TracedVolume& v) {
     return l;
 }
 
+// Up to MeshRaycaster::kPacket rays from samples' centres towards one light,
+// traced through every volume as one packet a volume (VolumeObject::densityPaths).
+struct RayPacket {
+    std::array<Vec3, MeshRaycaster::kPacket> origin, dir;
+    std::array<double, MeshRaycaster::kPacket> reach;
+    std::array<size_t, MeshRaycaster::kPacket> sample;
+    std::array<Depth, MeshRaycaster::kPacket> depth;
+    size_t count = 0;
+
+    size_t size() const { return count; }
+    void clear() { count = 0; }
+
+    // The ray from x towards a point or directional light; none where the light
+    // sits at x or has no direction (their depth stays 0, as one ray alone).
+    void addTowards(const Light& light, const Vec3& x, size_t i) {
+        Vec3 d;
+        double r = kInfinity;
+        if (light.type == Light::Type::Point) {
+            r = glm::length(light.position - x);
+            if (!(r > 0.0)) return;
+            d = (light.position - x) / r;
+        } else {
+            const double length = glm::length(light.direction);
+            if (!(length > 0.0)) return;
+            d = -light.direction / length;
+        }
+        origin[count] = x;
+        dir[count] = d;
+        reach[count] = r;
+        sample[count] = i;
+        ++count;
+    }
+
+    // depthAlong for every ray, a packet a volume.
+    void trace(const std::vector<TracedVolume>& volumes) {
+        if (count == 0) return;
+        std::array<Vec3, MeshRaycaster::kPacket> ownOrigin, ownDir;
+        std::array<double, MeshRaycaster::kPacket> ownReach, path;
+        depth.fill(Depth{});
+        for (const TracedVolume& v : volumes) {
+            const Similarity& own = v.volume->placement();
+            const double toOwn = own.scale / v.placement.scale;  // its lengths per world length
+            for (size_t k = 0; k < count; ++k) {
+                ownOrigin[k] = own.point(v.placement.inversePoint(origin[k]));
+                ownDir[k] = own.direction(v.placement.inverseDirection(dir[k]));
+                ownReach[k] = reach[k] * toOwn;
+            }
+            v.volume->densityPaths(std::span(ownOrigin.data(), count), std::span(ownDir.data(), count), false,
+                                   std::span(path.data(), count), std::span(ownReach.data(), count));
+            for (size_t k = 0; k < count; ++k) {
+                if (path[k] == kInfinity) depth[k].blocked = true;
+                if (!depth[k].blocked) depth[k].tau += v.volume->desc().medium.sigmaT * (path[k] / toOwn);
+            }
+        }
+    }
+};
+
 void forEachSample(size_t count, const std::function<void(size_t)>& body) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) body(i);
@@ -90,26 +150,30 @@ std::vector<glm::vec4> tracedOpticalDepths(const std::vector<TracedVolume>& volu
     std::vector<glm::vec4> depths(samples.size() * lightCount, glm::vec4(0.0f));
     if (depths.empty()) return depths;
     for (const TracedVolume& v : volumes) v.volume->boundary();  // built once here, not raced for by the rays
-    forEachSample(samples.size(), [&](size_t i) {
-        const Vec3 x = placement.point(Vec3(samples.positions[i]));
-        for (size_t j = 0; j < lightCount; ++j) {
-            const Light& light = lights[j];
-            if (light.type == Light::Type::Point && light.radius > 0.0) {
-                depths[i * lightCount + j] = packed(softDepth(volumes, x, light, i));
-                continue;
+    std::vector<Vec3> centres(samples.size());
+    for (size_t i = 0; i < centres.size(); ++i) centres[i] = placement.point(Vec3(samples.positions[i]));
+    // Neighbouring samples in one packet: their rays to a light run side by side.
+    const std::vector<uint32_t> order = spatialOrder(centres);
+    const size_t P = MeshRaycaster::kPacket, packets = (order.size() + P - 1) / P;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 4), [&](const tbb::blocked_range<size_t>& range) {
+        RayPacket rays;
+        for (size_t packet = range.begin(); packet != range.end(); ++packet) {
+            const size_t first = packet * P, count = std::min(P, order.size() - first);
+            for (size_t j = 0; j < lightCount; ++j) {
+                const Light& light = lights[j];
+                if (light.type == Light::Type::Point && light.radius > 0.0) {
+                    for (size_t k = 0; k < count; ++k) {
+                        const size_t i = order[first + k];
+                        depths[i * lightCount + j] = packed(softDepth(volumes, centres[i], light, i));
+                    }
+                    continue;
+                }
+                rays.clear();
+                for (size_t k = 0; k < count; ++k) rays.addTowards(light, centres[order[first + k]], order[first + k]);
+                rays.trace(volumes);
+                for (size_t r = 0; r < rays.size(); ++r)
+                    depths[rays.sample[r] * lightCount + j] = packed(rays.depth[r]);
             }
-            Vec3 dir;
-            double reach = kInfinity;
-            if (light.type == Light::Type::Point) {
-                reach = glm::length(light.position - x);
-                if (!(reach > 0.0)) continue;  // a light at the centre: nothing in between
-                dir = (light.position - x) / reach;
-            } else {
-                const double length = glm::length(light.direction);
-                if (!(length > 0.0)) continue;
-                dir = -light.direction / length;
-            }
-            depths[i * lightCount + j] = packed(depthAlong(volumes, nullptr, x, dir, reach));
         }
     });
     return depths;

@@ -5,7 +5,8 @@
 // loops of a knot) is a narrow feature of psi_i that 64 coefficients smear over
 // its neighbourhood, and psi_i knows nothing of the other objects; the traced
 // depth is exact for point and directional lights (docs/accuracy.md, traced
-// light), at one ray per sample, light and object.
+// light), at one ray per sample, light and object, traced in packets of
+// neighbouring samples.
 #include <vector>
 
 #include <glm/glm.hpp>

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "core/rng.h"
 #include "core/volume_object.h"
 #include "runtime/internal/traced_light.h"
 #include "tests/support/test_support.h"
@@ -80,6 +81,33 @@ TEST(TracedLight, ABlockerOnTheWayStopsTheLight) {
     ASSERT_EQ(d.size(), 2u);
     EXPECT_EQ(d[0].w, 1.0f) << "the blocker lies between the sample and the light";
     expectDepth(d[1], Rgb(1.0), "the other way is clear");
+}
+
+// Many samples, traced in packets of neighbours: each gets its own depth, and
+// each ray ends at its light. The stone lies past the light inside the box, on
+// the line each ray would follow beyond it: it must not stop them.
+TEST(TracedLight, EverySampleOfAPacketEndsAtItsLight) {
+    test::ScratchDir dir;
+    ObjectDesc desc = test::simpleObject(test::writeBox(dir, "box.obj", Vec3(-1.0), Vec3(1.0)), 1.0);
+    desc.medium.sigmaT = Rgb(1.0, 2.0, 3.0);
+    desc.medium.blockers = {test::writeBox(dir, "stone.obj", Vec3(0.7, -0.1, -0.1), Vec3(0.9, 0.1, 0.1))};
+    std::vector<std::string> warnings;
+    const VolumeObject box(desc, warnings);
+    const Vec3 inside(0.5, 0.0, 0.0), outside(0.0, 5.0, 0.0);
+    Rng rng(3, 1);
+    std::vector<glm::vec3> positions(200);
+    for (glm::vec3& p : positions)
+        p = glm::vec3(-0.9 + 1.2 * rng.uniform(), 0.1 * (rng.uniform() - 0.5), 0.1 * (rng.uniform() - 0.5));
+    const std::vector<glm::vec4> d = tracedOpticalDepths({{&box, Similarity{}}}, samplesAt(positions), Similarity{},
+                                                         {pointLight(inside), pointLight(outside)});
+    ASSERT_EQ(d.size(), 2 * positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const Vec3 x(positions[i]);
+        expectDepth(d[2 * i], Rgb(1.0, 2.0, 3.0) * glm::length(inside - x), "to the light inside");
+        // To the light above: out through the face y = 1 (|x|, |z| stay below 1 on the way).
+        const double exit = glm::length(outside - x) * (1.0 - x.y) / (outside.y - x.y);
+        expectDepth(d[2 * i + 1], Rgb(1.0, 2.0, 3.0) * exit, "to the light outside");
+    }
 }
 
 }  // namespace
