@@ -145,7 +145,7 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     if (available("lbl"))
         return {"lbl", misses +
                            "; lbl adds it (3-8% measured on the sphere and the bunny, but 12-21% on the bundled "
-                           "cubes: --method mdom is within 2-6% on all of them, at 3-10x the time)"};
+                           "cubes: --method mdom is within 2-6% on all of them, at 3-5x the time)"};
     return {"ss", misses +
                       ", and this build cannot add it (no lbl): expect a dark image; --method path is the "
                       "ground truth"};
