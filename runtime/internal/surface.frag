@@ -1,26 +1,37 @@
 #version 450 core
-// Pass 1 (thesis 3.4.1): the reflected surface term, an energy-normalised Phong
-// BRDF times each light's irradiance, exactly as --method reference computes it.
-in vec3 worldPosition;
-in vec3 worldNormal;
-
+// Pass 1b (thesis 3.4.1): the reflected surface term, an energy-normalised Phong
+// BRDF times each light's irradiance, exactly as --method reference computes it,
+// once per pixel from what surface_normals.frag kept. Shading the meshes'
+// fragments instead ran llvmpipe's 4x4 blocks 20% full on the bunny's small
+// triangles (docs/runtime.md).
 #include "gpu_layout.h"
 #include "lights.glsl"
 #include "phase.glsl"
 
 uniform int lightCount;
 uniform vec3 cameraPosition;
-uniform vec3 diffuse;
-uniform vec3 specular;
-uniform float shininess;
-uniform sampler2D frontDepth;  // nearest front face of the translucent meshes
+uniform mat4 inverseViewProjection;
+uniform vec2 viewportSize;
+uniform sampler2D normals;  // normal, slot + 1
+uniform sampler2D depths;   // the kept face's window depth
+const int kSurfaceBatch = 32;                    // SurfacePass::kBatch
+uniform vec4 diffuse[kSurfaceBatch];             // rgb
+uniform vec4 specularShininess[kSurfaceBatch];  // rgb, shininess
 
 out vec4 colour;
 
 void main() {
-    // Only the nearest front face is visible; concave meshes draw several per pixel.
-    if (gl_FragCoord.z > texelFetch(frontDepth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) discard;
-    vec3 n = normalize(worldNormal);
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    vec4 kept = texelFetch(normals, pixel, 0);
+    if (kept.w < 0.5) discard;
+    float z = texelFetch(depths, pixel, 0).r;
+    gl_FragDepth = z;  // the host's depth test, as the face itself met it
+    vec4 world = inverseViewProjection * vec4(gl_FragCoord.xy / viewportSize * 2.0 - 1.0, 2.0 * z - 1.0, 1.0);
+    vec3 worldPosition = world.xyz / world.w;
+    int slot = int(kept.w + 0.5) - 1;
+    vec3 kd = diffuse[slot].rgb, ks = specularShininess[slot].rgb;
+    float shininess = specularShininess[slot].w;
+    vec3 n = kept.xyz;
     vec3 toEye = normalize(cameraPosition - worldPosition);
     vec3 sum = vec3(0.0);
     for (int j = 0; j < lightCount; ++j) {
@@ -39,7 +50,7 @@ void main() {
         if (cosI <= 0.0) continue;
         vec3 reflected = 2.0 * cosI * n - toLight;
         float cosR = max(dot(reflected, toEye), 0.0);
-        vec3 brdf = diffuse / PI + specular * (shininess + 2.0) / (2.0 * PI) * pow(cosR, shininess);
+        vec3 brdf = kd / PI + ks * (shininess + 2.0) / (2.0 * PI) * pow(cosR, shininess);
         sum += brdf * lights[j].power.rgb * falloff * cosI;
     }
     colour = vec4(sum, 0.0);

@@ -136,6 +136,54 @@ TEST(SingleScattering, SurfaceTermIsTheReferencesWithTheSameNormals) {
     EXPECT_LT(all.relativeRmse, test::ssGoalRelativeRmse(sphere.objects));
 }
 
+// The surface term is drawn deferred (runtime/internal/surface_pass.h): each
+// pixel keeps its nearest face and that object's material. Two spheres with
+// different surfaces, the nearer hiding part of the farther, against the
+// reference's surface term, as above.
+TEST(SingleScattering, SurfaceTermOfTwoObjectsIsEachOnesOwn) {
+    test::ScratchDir dir;
+    SceneDesc scene;
+    scene.camera = test::squareCamera(Vec3(0, 0, 6), Vec3(0), 40, 128);
+    scene.lights = {test::pointLight(Vec3(3, 3, 4), Rgb(60.0)), test::pointLight(Vec3(-4, 1, 2), Rgb(20.0))};
+    for (int k = 0; k < 2; ++k) {
+        ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 2.0, 0.75);
+        o.name = "sphere" + std::to_string(k);
+        o.samples = dir.path() / (o.name + ".lsf");
+        o.fingerprint = 42 + uint64_t(k);
+        o.transform =
+            makeSimilarity(0.8, Vec3(0.0, 0.0, 1.0), 0.0, k == 0 ? Vec3(-0.5, 0.0, 1.0) : Vec3(0.6, 0.2, -0.5));
+        SurfaceDesc surface;
+        surface.diffuse = k == 0 ? Rgb(0.5, 0.1, 0.1) : Rgb(0.05, 0.2, 0.4);
+        surface.specular = k == 0 ? Rgb(0.05) : Rgb(0.3);
+        surface.shininess = k == 0 ? 8.0 : 64.0;
+        o.surface = surface;
+        scene.objects.push_back(o);
+    }
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    for (size_t k = 0; k < objects.size(); ++k) {
+        SampleSet s = preprocessObject(objects[k], qualityPreset("draft"));
+        s.sceneFingerprint = scene.objects[k].fingerprint;
+        writeSampleFile(scene.objects[k].samples, s);
+    }
+    ReferenceSettings settings;
+    settings.tolerance = 1e-4;
+    const ReferenceRenderer reference(scene, objects);
+    const Image withSurface = reference.render(settings);
+    settings.surface = false;
+    const Image withoutSurface = reference.render(settings);
+    const Image ssWith = test::renderSs(scene, true), ssWithout = test::renderSs(scene, false);
+    Image referenceSurface = withSurface, ssSurface = ssWith;
+    for (size_t i = 0; i < withSurface.pixels.size(); ++i) {
+        referenceSurface.pixels[i] = withSurface.pixels[i] - withoutSurface.pixels[i];
+        ssSurface.pixels[i] = ssWith.pixels[i] - ssWithout.pixels[i];
+    }
+    const ImageError term = compareImages(ssSurface, referenceSurface, 1);
+    std::printf("two objects' surface terms: relative RMSE %.2e over %zu pixels\n", term.relativeRmse, term.pixels);
+    EXPECT_GT(term.pixels, 2000u);
+    EXPECT_LT(term.relativeRmse, 1e-3);  // the one-object test's bound
+}
+
 TEST(SingleScattering, ErrorFallsWithSamplesAndShOrder) {
     test::ScratchDir dir;
     SphereScene sphere(dir);
