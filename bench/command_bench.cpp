@@ -11,11 +11,14 @@
 //
 //   build/bin/lucent-bench-command [SCENE] [--size 800] [--rounds 8] [--idle 5]
 //                                  [--baseline "--method reference"]
-//                                  [--variant "--method ss"]... [--out DIR]
-//                                  [--record docs/results/command.md]
+//                                  [--variant "--method ss"]... [--lights 1,8]
+//                                  [--out DIR] [--record docs/results/command.md]
 //
 // Prints, per set of options, the wall time (min, median, max), the median
 // processor time and peak resident set, and the baseline's median over its own.
+// With --lights, each variant also runs on the scene with its first light as
+// that many lights (sceneWithLights), in the same rounds: what a light costs
+// one image, the whole command included.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -23,6 +26,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
@@ -73,6 +78,73 @@ void runOnce(const std::filesystem::path& lucent, const std::string& scene, int 
     }
 }
 
+// The scene with its lights replaced by n copies of its first, each with 1/n of
+// its intensity: the image stays the same, so only the lights' own cost
+// changes (lucent-bench-render's lights table does the same for one frame).
+// Written into dir, with the objects' mesh and samples made absolute; a scene
+// that names other files (an environment, blockers, a density) is refused.
+std::filesystem::path writeSceneWithLights(const std::filesystem::path& scene, int n, const std::filesystem::path& dir);
+std::filesystem::path sceneWithLights(const std::filesystem::path& scene, int n, const std::filesystem::path& dir) {
+    try {
+        return writeSceneWithLights(scene, n, dir);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(scene.string(), std::string("--lights: ") + e.what());
+    }
+}
+
+std::filesystem::path writeSceneWithLights(const std::filesystem::path& scene, int n,
+                                           const std::filesystem::path& dir) {
+    std::ifstream in(scene);
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) throw Error(scene.string(), "--lights needs a JSON scene file");
+    if (!j.contains("lights") || !j["lights"].is_array() || j["lights"].empty())
+        throw Error(scene.string(), "--lights needs a scene with a light");
+    if (j.contains("environment")) throw Error(scene.string(), "--lights takes no scene with an environment");
+    nlohmann::json light = j["lights"][0];
+    nlohmann::json& intensity = light["intensity"];
+    if (intensity.is_number()) {
+        intensity = intensity.get<double>() / n;
+    } else if (intensity.is_array()) {
+        for (auto& c : intensity) c = c.get<double>() / n;
+    } else {
+        throw Error(scene.string(), "--lights needs the first light's intensity");
+    }
+    j["lights"] = nlohmann::json::array();
+    for (int k = 0; k < n; ++k) j["lights"].push_back(light);
+    const std::filesystem::path base = std::filesystem::absolute(scene).parent_path();
+    if (!j.contains("objects") || !j["objects"].is_array()) throw Error(scene.string(), "--lights: no objects");
+    for (auto& o : j["objects"]) {
+        const nlohmann::json& medium = o.value("medium", nlohmann::json::object());
+        if (medium.contains("blockers") || medium.contains("density"))
+            throw Error(scene.string(), "--lights takes no scene with blockers or densities");
+        for (const char* key : {"mesh", "samples"})
+            if (o.contains(key) && o[key].is_string()) o[key] = (base / o[key].get<std::string>()).string();
+    }
+    const std::filesystem::path out = dir / ("lights-" + std::to_string(n) + ".json");
+    AtomicFile file(out);
+    file.stream() << j.dump(2) << "\n";
+    file.commit();
+    return out;
+}
+
+// The --lights rows: each variant's median at each count against its first count's.
+void printLightRows(ResultsRecord& out, const std::vector<Variant>& runs, const std::vector<int>& lights) {
+    out.print(
+        "\nthe same with the scene's first light as n lights at one place, each 1/n of its intensity "
+        "(the same image):\n\n");
+    out.tableHeader({"options", "lights", "wall (s): median", "processor (s)", "this / first, at the medians",
+                     "this / first, per round (median)"},
+                    {false, true, true, true, true, true});
+    for (size_t k = 0; k < runs.size(); ++k) {
+        const Variant& first = runs[k - k % lights.size()];
+        std::vector<double> perRound;
+        for (size_t i = 0; i < runs[k].wall.size(); ++i) perRound.push_back(runs[k].wall[i] / first.wall[i]);
+        out.print("| `%s` | %d | %.3f | %.3f | %.2fx | %.2fx |\n", runs[k].options.c_str(), lights[k % lights.size()],
+                  median(runs[k].wall), median(runs[k].cpu), median(runs[k].wall) / median(first.wall),
+                  median(perRound));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,6 +161,11 @@ int main(int argc, char** argv) {
     app.add_option("--idle", idle, "Seconds of idle before each run")->check(CLI::Range(0.0, 600.0));
     app.add_option("--baseline", baseline, "The options the others are compared with");
     app.add_option("--variant", variants, "Options of a compared run (repeat the flag for more)");
+    std::vector<int> lightCounts;
+    app.add_option("--lights", lightCounts,
+                   "Also run each variant with the scene's first light as this many lights (comma-separated)")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 256));
     app.add_option("--out", outDir, "Directory for the images and the runs' output");
     std::string recordFile;
     app.add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
@@ -103,15 +180,29 @@ int main(int argc, char** argv) {
         for (const std::string& options : variants) runs.push_back({options, words(options), {}, {}, {}});
         runs.push_back({baseline, words(baseline), {}, {}, {}});
         const std::filesystem::path dir(outDir);
+        // The --lights runs: every variant at each count, on its own scene.
+        std::vector<Variant> lightRuns;
+        std::vector<std::string> lightScenes;
+        for (const int n : lightCounts) lightScenes.push_back(sceneWithLights(scene, n, dir).string());
+        for (const std::string& options : variants)
+            for (size_t c = 0; c < lightCounts.size(); ++c) lightRuns.push_back({options, words(options), {}, {}, {}});
         auto image = [&](size_t k) { return dir / ("image-" + std::to_string(k) + ".pfm"); };
         auto log = [&](size_t k) { return dir / ("run-" + std::to_string(k) + ".log"); };
 
         std::fprintf(stderr, "lucent-bench-command: warm-up round (shader and page caches)\n");
+        const size_t L = lightCounts.size();
+        auto lightScene = [&](size_t k) { return lightScenes[k % L]; };
         for (size_t k = 0; k < runs.size(); ++k) runOnce(lucent, scene, size, runs[k], image(k), log(k), false);
+        for (size_t k = 0; k < lightRuns.size(); ++k)
+            runOnce(lucent, lightScene(k), size, lightRuns[k], image(runs.size() + k), log(runs.size() + k), false);
         for (int round = 0; round < rounds; ++round) {
             for (size_t k = 0; k < runs.size(); ++k) {
                 std::this_thread::sleep_for(std::chrono::duration<double>(idle));
                 runOnce(lucent, scene, size, runs[k], image(k), log(k), true);
+            }
+            for (size_t k = 0; k < lightRuns.size(); ++k) {
+                std::this_thread::sleep_for(std::chrono::duration<double>(idle));
+                runOnce(lucent, lightScene(k), size, lightRuns[k], image(runs.size() + k), log(runs.size() + k), true);
             }
             std::fprintf(stderr, "lucent-bench-command: round %d of %d done\n", round + 1, rounds);
         }
@@ -131,6 +222,7 @@ int main(int argc, char** argv) {
                       median(v.wall), *hi, median(v.cpu), median(v.peakMb), baseMedian / median(v.wall),
                       median(perRound));
         }
+        if (!lightRuns.empty()) printLightRows(out, lightRuns, lightCounts);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const Error& e) {
         std::fprintf(stderr, "lucent-bench-command: error: %s\n", e.what());
