@@ -261,10 +261,14 @@ double MeshRaycaster::firstHit(const Vec3& origin, const Vec3& dir) const {
     return cs.empty() ? kInfinity : cs.front().t;
 }
 
-std::optional<Crossing> MeshRaycaster::firstCrossing(const Vec3& origin, const Vec3& dir, double tMin) const {
+std::optional<Crossing> MeshRaycaster::firstCrossing(const Vec3& origin, const Vec3& dir, double tMin,
+                                                     double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);  // no filter: Embree keeps the nearest hit
     RTCRayHit query = rayQuery(origin - origin_, dir, tMin);
+    // Single precision may put a hit at tMax a little past it: Embree looks a
+    // little further, and the hit's distance in double precision decides.
+    if (tMax < kInfinity) query.ray.tfar = float(tMax + 1e-5 * (tMax + bounds_.diagonal()));
     rtcIntersect1(tree_->scene, &context, &query);
     if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const uint32_t f = query.hit.primID;
@@ -277,9 +281,10 @@ std::optional<Crossing> MeshRaycaster::firstCrossing(const Vec3& origin, const V
         thread_local std::vector<Crossing> cs;
         crossings(origin, dir, cs);
         for (const Crossing& c : cs)
-            if (c.t > tMin) return c;
+            if (c.t > tMin) return c.t <= tMax ? std::optional(c) : std::nullopt;
         return std::nullopt;
     }
+    if (t > tMax) return std::nullopt;
     return Crossing{t, dn > 0.0, f};
 }
 

@@ -49,11 +49,12 @@ public:
 
     // Distance to the first crossing, or infinity.
     double firstHit(const Vec3& origin, const Vec3& dir) const;
-    // The first crossing beyond tMin: one nearest-hit traversal, where crossings()
-    // collects every hit along the ray (the refracting path tracer's many short
-    // queries); falls back to crossings() when the nearest hit is not beyond tMin
-    // in double precision.
-    std::optional<Crossing> firstCrossing(const Vec3& origin, const Vec3& dir, double tMin) const;
+    // The first crossing in (tMin, tMax]: one nearest-hit traversal, where crossings()
+    // collects every hit along the ray (the path tracers' many short queries: a
+    // refracting path's next boundary, a flight's tentative collision); falls back
+    // to crossings() when the nearest hit is not beyond tMin in double precision.
+    std::optional<Crossing> firstCrossing(const Vec3& origin, const Vec3& dir, double tMin,
+                                          double tMax = kInfinity) const;
 
     bool contains(const Vec3& p) const;
     double distanceToSurface(const Vec3& p) const;

@@ -94,6 +94,16 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
         Interval interval;
         const VolumeObject* object;
     };
+    // Flights inside the scene's only object mostly end before its boundary:
+    // the boundary is asked for only up to each tentative collision.
+    const bool alone = objects_.size() == 1 && inside == &objects_.front();
+    double tracked = 0.0;
+    if (alone) {
+        const InsideFlight flight = trackInside(*inside, origin, dir, tMax, rng, channel);
+        if (flight.collision) return Collision{*flight.collision, inside};
+        if (!flight.metBoundary) return std::nullopt;
+        tracked = flight.reached;
+    }
     thread_local std::vector<Span> spans;
     thread_local std::vector<Interval> intervals;
     spans.clear();
@@ -102,6 +112,16 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
         for (const Interval& i : intervals) spans.push_back({i, &o});
     }
     std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.interval.t0 < b.interval.t0; });
+    if (alone && !spans.empty() && spans.front().interval.t0 == 0.0) {
+        // The span the flight started in was tracked up to `tracked`, past its end
+        // unless single precision disagreed; what is left of it goes on from there
+        // (a free flight forgets where it started).
+        Interval& first = spans.front().interval;
+        if (first.t1 <= tracked)
+            spans.erase(spans.begin());
+        else
+            first.t0 = tracked;
+    }
     for (const Span& span : spans)
         if (const std::optional<double> t = sampleCollisionIn(*span.object, origin, dir, span.interval, rng, channel))
             return Collision{*t, span.object};
@@ -119,6 +139,23 @@ std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const
         if (t >= span.t1) return std::nullopt;
         const double sigma = sigmaT * o.density().at(origin + t * dir);
         if (rng.uniform() * mu < sigma) return t;
+    }
+}
+
+PathTracer::InsideFlight PathTracer::trackInside(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
+                                                 double tMax, PathSampler& rng, int channel) {
+    // sampleCollisionIn over the span from origin to the boundary, drawing the
+    // same numbers, with the boundary found lazily: a nearest-hit query up to each
+    // tentative collision, where the span's end needs every crossing of the ray.
+    const double mu = majorant(o, channel);
+    if (!(mu > 0.0)) return {};
+    const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
+    for (double t = 0.0, u = rng.flightUniform();; u = rng.uniform()) {
+        t -= std::log(1.0 - u) / mu;
+        if (o.boundary().firstCrossing(origin, dir, 0.0, std::min(t, tMax))) return {std::nullopt, t, true};
+        if (t >= tMax) return {};
+        const double sigma = sigmaT * o.density().at(origin + t * dir);
+        if (rng.uniform() * mu < sigma) return {t, t, false};
     }
 }
 

@@ -91,6 +91,16 @@ private:
     // The first real collision in o within span along origin + t dir, by delta tracking.
     static std::optional<double> sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
                                                    const Interval& span, PathSampler& rng, int channel);
+    // A flight from inside o, the scene's only object, tracked until it collides
+    // (collision), reaches tMax, or its tentative collision at `reached` lies past
+    // the boundary (metBoundary): then the spans beyond take over.
+    struct InsideFlight {
+        std::optional<double> collision;
+        double reached = 0.0;
+        bool metBoundary = false;
+    };
+    static InsideFlight trackInside(const VolumeObject& o, const Vec3& origin, const Vec3& dir, double tMax,
+                                    PathSampler& rng, int channel);
     // The Phong surface term at the first front face before tStop, as the reference adds it.
     Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings, int channel) const;
     // The object p lies in, or nullptr.

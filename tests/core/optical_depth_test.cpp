@@ -52,7 +52,7 @@ TEST(OpticalDepth, ConcaveTorusThroughVertices) {
     EXPECT_DOUBLE_EQ(torus.densityPath(Vec3(0, 0, 0), Vec3(0, 1, 0)), 0.0);
 }
 
-TEST(OpticalDepth, FirstCrossingIsTheFirstOfAllCrossingsBeyondItsStart) {
+TEST(OpticalDepth, FirstCrossingIsTheFirstOfAllCrossingsBetweenItsEnds) {
     // The one-traversal query against the collecting one, on the concave torus,
     // from points inside, outside and on the surface itself (where single
     // precision may report the face the ray starts on).
@@ -79,6 +79,13 @@ TEST(OpticalDepth, FirstCrossingIsTheFirstOfAllCrossingsBeyondItsStart) {
         if (!first) continue;
         EXPECT_NEAR(first->t, expected->t, 1e-9) << i;
         EXPECT_EQ(first->exits, expected->exits) << i;
+        // Bounded at tMax, a hand's breadth in double precision before or after the
+        // crossing (single precision alone cannot tell them apart).
+        const double gap = 1e-9 * (1.0 + expected->t);
+        EXPECT_FALSE(caster.firstCrossing(x, w, tMin, expected->t - gap)) << i;
+        const std::optional<Crossing> within = caster.firstCrossing(x, w, tMin, expected->t + gap);
+        ASSERT_TRUE(within) << i;
+        EXPECT_NEAR(within->t, expected->t, 1e-9) << i;
     }
     EXPECT_GT(onSurface, 150);  // 227 of the 1000 odd rays meet the torus
 }
