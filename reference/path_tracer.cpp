@@ -90,13 +90,9 @@ double PathTracer::blockerDistance(const Vec3& origin, const Vec3& dir) const {
 std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
                                                                  const VolumeObject* inside, PathSampler& rng,
                                                                  int channel) const {
-    struct Span {
-        Interval interval;
-        const VolumeObject* object;
-    };
     // Flights inside the scene's only object mostly end before its boundary:
     // the boundary is asked for only up to each tentative collision.
-    const bool alone = objects_.size() == 1 && inside == &objects_.front();
+    const bool alone = tracksInside(inside);
     double tracked = 0.0;
     if (alone) {
         const InsideFlight flight = trackInside(*inside, origin, dir, tMax, rng, channel);
@@ -105,13 +101,7 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
         tracked = flight.reached;
     }
     thread_local std::vector<Span> spans;
-    thread_local std::vector<Interval> intervals;
-    spans.clear();
-    for (const VolumeObject& o : objects_) {
-        o.boundary().insideIntervals(origin, dir, tMax, intervals, &o == inside);
-        for (const Interval& i : intervals) spans.push_back({i, &o});
-    }
-    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.interval.t0 < b.interval.t0; });
+    spansAlong(origin, dir, tMax, inside, spans);
     if (alone && !spans.empty() && spans.front().interval.t0 == 0.0) {
         // The span the flight started in was tracked up to `tracked`, past its end
         // unless single precision disagreed; what is left of it goes on from there
@@ -122,6 +112,26 @@ std::optional<PathTracer::Collision> PathTracer::sampleCollision(const Vec3& ori
         else
             first.t0 = tracked;
     }
+    return firstCollision(spans, origin, dir, rng, channel);
+}
+
+bool PathTracer::tracksInside(const VolumeObject* inside) const {
+    return objects_.size() == 1 && inside == &objects_.front();
+}
+
+void PathTracer::spansAlong(const Vec3& origin, const Vec3& dir, double tMax, const VolumeObject* inside,
+                            std::vector<Span>& spans) const {
+    thread_local std::vector<Interval> intervals;
+    spans.clear();
+    for (const VolumeObject& o : objects_) {
+        o.boundary().insideIntervals(origin, dir, tMax, intervals, &o == inside);
+        for (const Interval& i : intervals) spans.push_back({i, &o});
+    }
+    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.interval.t0 < b.interval.t0; });
+}
+
+std::optional<PathTracer::Collision> PathTracer::firstCollision(const std::vector<Span>& spans, const Vec3& origin,
+                                                                const Vec3& dir, PathSampler& rng, int channel) const {
     for (const Span& span : spans)
         if (const std::optional<double> t = sampleCollisionIn(*span.object, origin, dir, span.interval, rng, channel))
             return Collision{*t, span.object};
@@ -207,12 +217,20 @@ Rgb PathTracer::escaped(const Vec3& previous, const Vec3& w, double g, bool scat
     return L * powerHeuristic(henyeyGreenstein(glm::dot(w, previous), g), environment_->pdf(w));
 }
 
-Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings,
-                            int channel) const {
+Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings) const {
     // At the first front face before any blocker, as the reference adds it.
     if (!settings.surface || !scene_.render.surface) return Rgb(0.0);
-    const Rgb total = firstSurfaceReflection(objects_, surfaceLights_, origin, dir, tStop);
-    return masked(total, channel);
+    return firstSurfaceReflection(objects_, surfaceLights_, origin, dir, tStop);
+}
+
+PathTracer::CameraRay PathTracer::cameraRay(const Vec3& origin, const Vec3& dir, const PathSettings& settings) const {
+    CameraRay ray{origin, dir};
+    ray.tStop = blockerDistance(origin, dir);
+    ray.surface = surfaceTerm(origin, dir, ray.tStop, settings);
+    ray.inside = containing(origin);
+    ray.spansKept = !tracksInside(ray.inside);
+    if (ray.spansKept) spansAlong(origin, dir, ray.tStop, ray.inside, ray.spans);
+    return ray;
 }
 
 const VolumeObject* PathTracer::containing(const Vec3& p) const {
@@ -225,13 +243,20 @@ const VolumeObject* PathTracer::containing(const Vec3& p) const {
 Rgb PathTracer::radiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
                          int channel) const {
     if (refracting_) return refractedRadiance(origin, dir, rng, settings, channel);
-    double tStop = blockerDistance(origin, dir);
-    Rgb total = surfaceTerm(origin, dir, tStop, settings, channel);
-    const VolumeObject* inside = containing(origin);
-    Vec3 x = origin, w = dir, previous = dir;
+    const CameraRay ray = cameraRay(origin, dir, settings);
+    return masked(ray.surface, channel) + scattered(ray, rng, settings, channel);
+}
+
+Rgb PathTracer::scattered(const CameraRay& ray, PathSampler& rng, const PathSettings& settings, int channel) const {
+    double tStop = ray.tStop;
+    Rgb total(0.0);
+    const VolumeObject* inside = ray.inside;
+    Vec3 x = ray.origin, w = ray.dir, previous = ray.dir;
     Rgb throughput(1.0);
     for (int collisions = 0;; ++collisions) {
-        const std::optional<Collision> c = sampleCollision(x, w, tStop, inside, rng, channel);
+        const std::optional<Collision> c = collisions == 0 && ray.spansKept
+                                               ? firstCollision(ray.spans, x, w, rng, channel)
+                                               : sampleCollision(x, w, tStop, inside, rng, channel);
         if (!c) {
             if (tStop == kInfinity)
                 total +=
@@ -299,18 +324,20 @@ PathTracer::Result PathTracer::render(const PathSettings& settings) const {
                     PathSampler rng = settings.stratified ? PathSampler(settings.seed, pixel)
                                                           : PathSampler(Rng(settings.seed, pixel));
                     const Vec3 dir = rays.direction(x + 0.5, y + 0.5);
+                    // What every path of the pixel shares (its surface term, its
+                    // camera ray's crossings) is found once for them all.
+                    std::optional<CameraRay> ray;
+                    if (!refracting_) ray = cameraRay(rays.origin(), dir, settings);
                     Rgb sum(0.0), sumSquares(0.0);
                     int taken = 0;
                     while (taken < spp) {
                         const int batch = settings.noiseTarget > 0.0 ? std::min(kNoiseBatch, spp - taken) : spp;
                         for (int s = 0; s < batch; ++s) {
                             rng.startPath(uint32_t(taken + s));
-                            Rgb L(0.0);
-                            if (grey_)
-                                L = radiance(rays.origin(), dir, rng, settings, -1);
-                            else
-                                for (int channel = 0; channel < 3; ++channel)
-                                    L += radiance(rays.origin(), dir, rng, settings, channel);
+                            Rgb L = ray ? ray->surface : Rgb(0.0);
+                            for (int channel = grey_ ? -1 : 0; channel < (grey_ ? 0 : 3); ++channel)
+                                L += ray ? scattered(*ray, rng, settings, channel)
+                                         : radiance(rays.origin(), dir, rng, settings, channel);
                             sum += L;
                             sumSquares += L * L;
                         }

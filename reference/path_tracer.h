@@ -84,6 +84,34 @@ private:
         double t;
         const VolumeObject* object;
     };
+    // A stretch of a ray inside an object.
+    struct Span {
+        Interval interval;
+        const VolumeObject* object;
+    };
+    // The stretches of origin + t dir, 0 <= t <= tMax, inside each object, in order
+    // of their start: every crossing of the ray collected.
+    void spansAlong(const Vec3& origin, const Vec3& dir, double tMax, const VolumeObject* inside,
+                    std::vector<Span>& spans) const;
+    // The first collision within the spans, each tracked in turn.
+    std::optional<Collision> firstCollision(const std::vector<Span>& spans, const Vec3& origin, const Vec3& dir,
+                                            PathSampler& rng, int channel) const;
+    // Whether flights from inside go through trackInside(): inside is the scene's only object.
+    bool tracksInside(const VolumeObject* inside) const;
+    // What every path of a pixel shares, found once for them all (an index-matched
+    // scene's camera ray): where a blocker stops it, its surface term, the object
+    // the camera is in and, unless trackInside() takes the first flight, its spans.
+    struct CameraRay {
+        Vec3 origin, dir;
+        double tStop = kInfinity;
+        Rgb surface{0.0};
+        const VolumeObject* inside = nullptr;
+        bool spansKept = false;
+        std::vector<Span> spans;
+    };
+    CameraRay cameraRay(const Vec3& origin, const Vec3& dir, const PathSettings& settings) const;
+    // radiance() without the surface term, from a camera ray's shared part.
+    Rgb scattered(const CameraRay& ray, PathSampler& rng, const PathSettings& settings, int channel) const;
     // The first collision along origin + t dir before tMax, or none. inside is the
     // object origin lies in (nullptr: none).
     std::optional<Collision> sampleCollision(const Vec3& origin, const Vec3& dir, double tMax,
@@ -102,7 +130,7 @@ private:
     static InsideFlight trackInside(const VolumeObject& o, const Vec3& origin, const Vec3& dir, double tMax,
                                     PathSampler& rng, int channel);
     // The Phong surface term at the first front face before tStop, as the reference adds it.
-    Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings, int channel) const;
+    Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings) const;
     // The object p lies in, or nullptr.
     const VolumeObject* containing(const Vec3& p) const;
     // radiance() and walk() in a scene with a refracting boundary (core/refraction.h):

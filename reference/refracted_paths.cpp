@@ -74,7 +74,7 @@ PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, c
 
 Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampler& rng, const PathSettings& settings,
                                   int channel) const {
-    Rgb total = surfaceTerm(origin, dir, blockerDistance(origin, dir), settings, channel);
+    Rgb total = masked(surfaceTerm(origin, dir, blockerDistance(origin, dir), settings), channel);
     const VolumeObject* inside = containing(origin);
     Vec3 x = origin, w = dir;
     Rgb throughput(1.0);

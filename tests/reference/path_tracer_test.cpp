@@ -198,6 +198,39 @@ TEST(PathTracer, NoiseTargetStopsEachPixelAtItsError) {
     EXPECT_NEAR(sumA, sumF, 4.0 * std::sqrt(var));
 }
 
+TEST(PathTracer, EveryPathAddsTheSurfaceTermOnce) {
+    // Each pixel's surface term is found once for all its paths: with the same
+    // seed, the images with and without it differ by the reference's surface
+    // term exactly, in every channel of a coloured medium (one path a channel).
+    SceneDesc scene;
+    scene.camera = test::squareCamera(Vec3(0.3, 0.2, 5), Vec3(0), 30, 12);
+    scene.lights = {test::pointLight(Vec3(3, 3, 3), Rgb(10.0))};
+    ObjectDesc sphere = test::simpleObject(test::modelsDir() / "sphere.obj", 1.0, 0.8);
+    sphere.medium.sigmaT = Rgb(0.5, 1.0, 3.0);
+    sphere.surface = SurfaceDesc{Rgb(0.3, 0.2, 0.1), Rgb(0.2), 16.0};
+    scene.objects = {sphere};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const ReferenceRenderer reference(scene, objects);
+    ReferenceSettings without;
+    without.surface = false;
+    const Image exactWith = reference.render(ReferenceSettings{}), exactWithout = reference.render(without);
+    const PathTracer tracer(scene, objects);
+    PathSettings on, off;
+    on.samplesPerPixel = off.samplesPerPixel = 6;
+    off.surface = false;
+    const Image pathWith = tracer.render(on).mean, pathWithout = tracer.render(off).mean;
+    double largest = 0.0;
+    for (size_t i = 0; i < exactWith.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double exact = exactWith.pixels[i][c] - exactWithout.pixels[i][c];
+            largest = std::max(largest, exact);
+            EXPECT_NEAR(pathWith.pixels[i][c] - pathWithout.pixels[i][c], exact, 1e-5 * (1.0 + exactWith.pixels[i][c]))
+                << i << " " << c;
+        }
+    EXPECT_GT(largest, 0.01);  // the surface is lit where the camera sees it
+}
+
 TEST(PathTracer, HenyeyGreensteinSamplesHaveTheMeanCosineG) {
     // <cos theta> of the HG distribution is g (its defining moment).
     for (double g : {-0.9, -0.3, 0.0, 0.5, 0.95}) {
