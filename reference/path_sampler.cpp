@@ -31,12 +31,20 @@ uint32_t owenScramble(uint32_t x, uint32_t seed) { return reverseBits(lowerBitsH
 
 PathSampler::PathSampler(uint64_t seed, uint64_t pixel) : rng_(seed, pixel), stratified_(true) {
     jointShuffle_ = uint32_t(rng_.nextU64());
+    jointIndex_ = owenScramble(path_, jointShuffle_);
     for (uint32_t& s : jointScramble_) s = uint32_t(rng_.nextU64());
     for (size_t f = 0; f < shuffle_.size(); ++f) {
         const uint64_t bits = rng_.nextU64();
         shuffle_[f] = uint32_t(bits);
         scramble_[f] = uint32_t(bits >> 32);
     }
+}
+
+void PathSampler::startPath(uint32_t index) {
+    path_ = index;
+    flights_ = 0;
+    directions_ = 0;
+    if (stratified_) jointIndex_ = owenScramble(path_, jointShuffle_);
 }
 
 double PathSampler::finest(uint32_t x) {
@@ -46,9 +54,8 @@ double PathSampler::finest(uint32_t x) {
 }
 
 double PathSampler::jointUniform(int d) {
-    // The path's place in the shuffle, then its point's scrambled coordinate.
-    const uint32_t index = owenScramble(path_, jointShuffle_);
-    return finest(owenScramble(sobol(d, index), jointScramble_[d]));
+    // The path's point (its place in the shuffle, from startPath), its scrambled coordinate.
+    return finest(owenScramble(sobol(d, jointIndex_), jointScramble_[d]));
 }
 
 double PathSampler::flightUniform() {

@@ -40,11 +40,7 @@ public:
     PathSampler(uint64_t seed, uint64_t pixel);
 
     // The next path of the pixel; its flights take their place in the strata.
-    void startPath(uint32_t index) {
-        path_ = index;
-        flights_ = 0;
-        directions_ = 0;
-    }
+    void startPath(uint32_t index);
     // Uniform in [0, 1).
     double uniform() { return rng_.uniform(); }
     // Uniform in [0, 1): the first draw of the path's next free flight.
@@ -60,6 +56,7 @@ private:
     int flights_ = 0;
     int directions_ = 0;  // flights whose direction was drawn (each dimension is used once)
     uint32_t jointShuffle_ = 0;
+    uint32_t jointIndex_ = 0;  // the path's place in the joint points' shuffle
     std::array<uint32_t, 3 * kJointBounces> jointScramble_{};
     std::array<uint32_t, kStratifiedFlights - kJointBounces> shuffle_{}, scramble_{};
 
