@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <cstdio>
 
 #include "core/camera_rays.h"
@@ -84,10 +85,12 @@ TEST(PathTracer, IsotropicSlabTransmissionMatchesVanDeHulstTable12) {
 struct Fluxes {
     double up, upError, down, downError;
 };
-Fluxes slabFluxes(double thickness, double albedo, double g, double mu0, int n) {
+Fluxes slabFluxes(double thickness, double albedo, double g, double mu0, int n,
+                  const std::function<void(ObjectDesc&)>& alter = {}) {
     test::ScratchDir dir;
     SceneDesc scene;
     scene.objects = {slabObject(writeSlab(dir, thickness), albedo, g)};
+    if (alter) alter(scene.objects.front());
     std::vector<std::string> warnings;
     const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
     const PathTracer tracer(scene, objects);
@@ -107,6 +110,22 @@ Fluxes slabFluxes(double thickness, double albedo, double g, double mu0, int n) 
 
 TEST(PathTracer, ForwardScatteringSlabMatchesVanDeHulstTable35) {
     const Fluxes f = slabFluxes(2.0, 0.9, 0.75, 1.0, 200000);
+    expectWithin(f.up, f.upError, 0.09739, "Rd");
+    expectWithin(f.down, f.downError, 0.66096, "Tt");
+}
+
+TEST(PathTracer, SlabAtHalfItsMajorantMatchesVanDeHulstTable35) {
+    // The same slab as sigma_t 2 at density 0.5, but for its last tenth along x
+    // (32 optical depths from the beam, where no walk goes) at 1: the majorant
+    // is twice the medium and half the tentative collisions are null: the flights
+    // from inside find the boundary at each tentative collision in turn.
+    const Fluxes f = slabFluxes(2.0, 0.9, 0.75, 1.0, 200000, [](ObjectDesc& o) {
+        o.medium.sigmaT = Rgb(2.0);
+        o.medium.density.type = DensityDesc::Type::Layers;
+        o.medium.density.axis = 0;
+        o.medium.density.values.assign(10, 0.5);
+        o.medium.density.values.back() = 1.0;
+    });
     expectWithin(f.up, f.upError, 0.09739, "Rd");
     expectWithin(f.down, f.downError, 0.66096, "Tt");
 }
