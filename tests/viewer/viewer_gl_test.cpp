@@ -220,8 +220,11 @@ TEST(Viewer, MovingRefractingAndRecolouringTheSelectedObjectDrawsWhatTheSceneSay
     const ImageError e = compareImages(readPfm(shot), readPfm(rendered));
     EXPECT_GT(e.pixels, 500u);
     // The same passes on the same samples; only the depth range (the viewer's
-    // hugs the placed bounding box's corners) may differ.
-    EXPECT_LT(e.relativeRmse, 1e-3);
+    // hugs the placed bounding box's corners) may differ, which moves a few
+    // silhouette pixels by about 1%. The bound is a tenth of what one parameter
+    // 2% off gives: blue's albedo 0.88 for 0.9 moves the image by 1.7% (g, ior,
+    // scale, turn or move 1-2% off: 5% to 34%).
+    EXPECT_LT(e.relativeRmse, 1.7e-3);
 }
 
 #ifdef LUCENT_HAVE_OPENCL
