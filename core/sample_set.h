@@ -32,7 +32,7 @@ inline constexpr uint32_t kNoRegionAxis = 3;
 struct SampleParameters {
     uint64_t seed = 1;
     uint32_t heuristicDirections = 64;
-    uint32_t projectionDirections = 256;
+    uint32_t projectionDirections = 128;
     uint32_t layerCount = 0;
     float layerSpacing = 0.0f;  // scene units between offset layers
     float meanRadius = 0.0f;    // r of thesis 3.2.4

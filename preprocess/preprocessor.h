@@ -13,7 +13,7 @@ namespace lucent {
 struct PreprocessSettings {
     int samples = 40000;             // target count; the mean radius r is fitted to it
     int heuristicDirections = 64;    // d, thesis 3.2.3
-    int projectionDirections = 256;  // thesis 3.3.1: 128 enough, 256 saturates
+    int projectionDirections = 128;  // thesis 3.3.1: 128 enough, 256 saturates (docs/preprocess.md)
     int shOrder = 8;                 // bands: 64 coefficients (docs/accuracy.md, SH order)
     uint64_t seed = 1;
     // Gaussian FWHM / Poisson radius. The thesis (3.3.2) uses 1; its Gaussians then
