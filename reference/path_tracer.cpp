@@ -138,18 +138,25 @@ std::optional<PathTracer::Collision> PathTracer::firstCollision(const std::vecto
     return std::nullopt;
 }
 
+template <class PastEnd>
+PathTracer::Tracked PathTracer::deltaTrack(const VolumeObject& o, const Vec3& origin, const Vec3& dir, double t0,
+                                           const PastEnd& pastEnd, PathSampler& rng, int channel) {
+    const double mu = majorant(o, channel);
+    if (!(mu > 0.0)) return {std::nullopt, t0};
+    const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
+    // Tentative collisions at rate mu, each real with probability sigma(x) / mu.
+    for (double t = t0, u = rng.flightUniform();; u = rng.uniform()) {
+        t -= std::log(1.0 - u) / mu;
+        if (pastEnd(t)) return {std::nullopt, t};
+        const double sigma = sigmaT * o.density().at(origin + t * dir);
+        if (rng.uniform() * mu < sigma) return {t, t};
+    }
+}
+
 std::optional<double> PathTracer::sampleCollisionIn(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
                                                     const Interval& span, PathSampler& rng, int channel) {
-    const double mu = majorant(o, channel);
-    if (!(mu > 0.0)) return std::nullopt;
-    const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
-    // Delta tracking: tentative collisions at rate mu, real with probability sigma(x) / mu.
-    for (double t = span.t0, u = rng.flightUniform();; u = rng.uniform()) {
-        t -= std::log(1.0 - u) / mu;
-        if (t >= span.t1) return std::nullopt;
-        const double sigma = sigmaT * o.density().at(origin + t * dir);
-        if (rng.uniform() * mu < sigma) return t;
-    }
+    const auto pastEnd = [&](double t) { return t >= span.t1; };
+    return deltaTrack(o, origin, dir, span.t0, pastEnd, rng, channel).collision;
 }
 
 PathTracer::InsideFlight PathTracer::trackInside(const VolumeObject& o, const Vec3& origin, const Vec3& dir,
@@ -160,16 +167,13 @@ PathTracer::InsideFlight PathTracer::trackInside(const VolumeObject& o, const Ve
     // Each null collision costs one more such query, a short one: on the bunny at
     // a tenth and a hundredth of its majorant, handing over to the spans after
     // four of them did not change the time.
-    const double mu = majorant(o, channel);
-    if (!(mu > 0.0)) return {};
-    const double sigmaT = channelOf(o.desc().medium.sigmaT, channel);
-    for (double t = 0.0, u = rng.flightUniform();; u = rng.uniform()) {
-        t -= std::log(1.0 - u) / mu;
-        if (o.boundary().firstCrossing(origin, dir, 0.0, std::min(t, tMax))) return {std::nullopt, t, true};
-        if (t >= tMax) return {};
-        const double sigma = sigmaT * o.density().at(origin + t * dir);
-        if (rng.uniform() * mu < sigma) return {t, t, false};
-    }
+    bool metBoundary = false;
+    const auto pastEnd = [&](double t) {
+        metBoundary = o.boundary().firstCrossing(origin, dir, 0.0, std::min(t, tMax)).has_value();
+        return metBoundary || t >= tMax;
+    };
+    const Tracked tracked = deltaTrack(o, origin, dir, 0.0, pastEnd, rng, channel);
+    return {tracked.collision, tracked.reached, metBoundary};
 }
 
 Rgb PathTracer::gatherLights(const VolumeObject& object, const Vec3& x, const Vec3& dir, PathSampler& rng) const {
@@ -227,7 +231,9 @@ Rgb PathTracer::surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, c
 }
 
 PathTracer::CameraRay PathTracer::cameraRay(const Vec3& origin, const Vec3& dir, const PathSettings& settings) const {
-    CameraRay ray{origin, dir};
+    CameraRay ray;
+    ray.origin = origin;
+    ray.dir = dir;
     ray.tStop = blockerDistance(origin, dir);
     ray.surface = surfaceTerm(origin, dir, ray.tStop, settings);
     ray.inside = containing(origin);

@@ -129,6 +129,15 @@ private:
     };
     static InsideFlight trackInside(const VolumeObject& o, const Vec3& origin, const Vec3& dir, double tMax,
                                     PathSampler& rng, int channel);
+    // Delta tracking in o from t0 until a real collision, or until pastEnd(t) says
+    // the tentative collision at t lies past the flight's end (then reached = t).
+    struct Tracked {
+        std::optional<double> collision;
+        double reached = 0.0;
+    };
+    template <class PastEnd>
+    static Tracked deltaTrack(const VolumeObject& o, const Vec3& origin, const Vec3& dir, double t0,
+                              const PastEnd& pastEnd, PathSampler& rng, int channel);
     // The Phong surface term at the first front face before tStop, as the reference adds it.
     Rgb surfaceTerm(const Vec3& origin, const Vec3& dir, double tStop, const PathSettings& settings) const;
     // The object p lies in, or nullptr.
