@@ -4,7 +4,9 @@
 // Egbert): darts land in active triangle fragments chosen by area; a fragment
 // that a disk covers entirely is dropped, any other is split in four and its
 // children go one level down. When no fragment is left the set is maximal up to
-// the finest level, and the work is linear in the number of fragments.
+// the finest level, and the work is linear in the number of fragments. Tiles of
+// the surface far enough apart take their darts at once, on every core; the
+// samples are the same for any thread count.
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "preprocess/poisson_disk.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/rng.h"
 
@@ -68,6 +69,19 @@ TEST(PoissonDisk, SameSeedSameSamples) {
     const auto b = poissonDiskSample(square(10, 0.05, 0.1), 3, 0.01);
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].position, b[i].position);
+}
+
+// Tiles of one parity class take their darts at once: the samples must not
+// depend on how many threads take them. The square spans about 50 tiles a side.
+TEST(PoissonDisk, SameSamplesForAnyThreadCount) {
+    auto sampleWith = [](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        return poissonDiskSample(square(200, 0.002, 0.004), 9, 0.0004);
+    };
+    const auto one = sampleWith(1), two = sampleWith(2);
+    ASSERT_GT(one.size(), 10000u);
+    ASSERT_EQ(one.size(), two.size());
+    for (size_t i = 0; i < one.size(); ++i) ASSERT_EQ(one[i].position, two[i].position) << i;
 }
 
 }  // namespace
