@@ -11,7 +11,7 @@
 namespace lucent {
 
 // The ratio drawn / preprocessed within which stale samples are never more
-// than 0.8 points of relative RMSE worse than fresh ones: measured
+// than 1.3 points of relative RMSE worse than fresh ones: measured
 // on the sphere and the bunny drawn at 0.05 to 16 times the size their samples
 // were made for, and on a thick sphere at 1/8 to 1/2 (docs/runtime.md, "Placement").
 inline constexpr double kServedSizeRatio = 4.0;
