@@ -137,7 +137,7 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
         out.push_back(object +
                       ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
                       "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
-                      "from the refracting reference on the sphere, 13-15% on the wax bunny at ior 1.33-1.5");
+                      "from the refracting reference on the sphere, 12-13% on the wax bunny at ior 1.33-1.5");
         // The refracted view starts where the camera's ray enters the object.
         if (o.contains(scene.desc.camera.position))
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
