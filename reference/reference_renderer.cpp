@@ -1,5 +1,7 @@
 #include "reference/reference_renderer.h"
 
+#include <array>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -40,21 +42,54 @@ Rgb ReferenceRenderer::inScattered(const VolumeObject& object, const Vec3& x, co
     return sigmaS * straightLights(object, x, viewDir);
 }
 
-Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
+namespace {
+
+// The midpoint rule over a sphere light's cone, on kSphereLightStrata^2 strata
+// uniform in solid angle. Where a blocker's edge crosses the cone, a stratum
+// whose light is blocked and a neighbour's that is not are each integrated
+// again on as many sub-strata: the rule alone was 3% off in a plate's
+// penumbra (tests/reference/sphere_light_penumbra_test.cpp), as its error
+// there falls only as one over the strata per axis.
+template <class Arriving>
+Rgb sphereLightCone(const Light& light, const Arriving& arriving) {
+    constexpr int n = kSphereLightStrata;
+    std::array<Rgb, n * n> strata;
+    for (int k = 0; k < n * n; ++k) strata[k] = arriving(light, (k % n + 0.5) / n, (k / n + 0.5) / n);
+    // Stratum (i, j) spans the cone's rings i (u, from the axis out) and sectors j
+    // (v, around it, so sector n - 1 meets sector 0); the first ring's strata all meet at the axis.
+    const auto dark = [&](int i, int j) { return magnitude(strata[((j + n) % n) * n + i]) == 0.0; };
+    bool innerRingMixed = false;
+    for (int j = 1; j < n; ++j) innerRingMixed = innerRingMixed || dark(0, j) != dark(0, 0);
     Rgb sum(0.0);
-    for (const Light& light : lights_) {
-        // A sphere light's cone on a grid of strata (the midpoint rule in solid angle).
-        const int strata = light.radius > 0.0 ? kSphereLightStrata : 1;
-        for (int k = 0; k < strata * strata; ++k) {
-            const std::optional<LightArrival> a =
-                lightArrivingAt(light, x, (k % strata + 0.5) / strata, (k / strata + 0.5) / strata);
-            if (!a) continue;
-            // Phase function between the light's propagation direction (-toLight) and the
-            // view's propagation direction (-viewDir).
-            const double phase = henyeyGreenstein(glm::dot(a->toLight, viewDir), object.desc().medium.g);
-            sum += phase * a->irradiance * transmittanceToLight(objects_, x, *a) / double(strata * strata);
+    for (int k = 0; k < n * n; ++k) {
+        const int i = k % n, j = k / n;
+        const bool edge = (i == 0 && innerRingMixed) || (i > 0 && dark(i - 1, j) != dark(i, j)) ||
+                          (i + 1 < n && dark(i + 1, j) != dark(i, j)) || dark(i, j - 1) != dark(i, j) ||
+                          dark(i, j + 1) != dark(i, j);
+        if (!edge) {
+            sum += strata[k];
+            continue;
         }
+        for (int m = 0; m < n * n; ++m)
+            sum += arriving(light, (i + (m % n + 0.5) / n) / n, (j + (m / n + 0.5) / n) / n) / double(n * n);
     }
+    return sum / double(n * n);
+}
+
+}  // namespace
+
+Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
+    // Light from (u, v) of a light's directions: phase p between the light's
+    // propagation direction (-toLight) and the view's (-viewDir), times E T.
+    const auto arriving = [&](const Light& light, double u, double v) {
+        const std::optional<LightArrival> a = lightArrivingAt(light, x, u, v);
+        if (!a) return Rgb(0.0);
+        const double phase = henyeyGreenstein(glm::dot(a->toLight, viewDir), object.desc().medium.g);
+        return phase * a->irradiance * transmittanceToLight(objects_, x, *a);
+    };
+    Rgb sum(0.0);
+    for (const Light& light : lights_)
+        sum += light.radius > 0.0 ? sphereLightCone(light, arriving) : arriving(light, 0.5, 0.5);
     return sum;
 }
 
