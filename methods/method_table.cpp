@@ -89,14 +89,6 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // not 1 within the goal on every bundled scene: lbl and mdom refract and
     // reflect at the boundary (4-6% on the sphere) but miss it on the wax bunny,
     // where ss's single scattering misses its own (docs/accuracy.md).
-    // Only the ground truths draw an environment reaching the camera unscattered
-    // (docs/scene-file.md, "Environment lights"): through an index-matched object
-    // it is e^{-tau} of the map, the whole image where the object is thin.
-    if (scene.environment && scene.render.background)
-        return {"path",
-                "the scene asks for the environment's background (\"background\": true), which only the path "
-                "tracer draws in full (ss, lbl and mdom leave it out); it is slow: lower --samples or set --noise for "
-                "a draft, or set \"background\": false"};
     for (const ObjectDesc& o : scene.objects)
         if (o.medium.ior != 1.0)
             return {"path",
