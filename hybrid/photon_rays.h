@@ -18,8 +18,9 @@ struct RayMap {
 };
 
 // About `count` rays per light. A point light sends them uniformly over the cone
-// that holds the grid's bounding sphere (I * solid angle / N each); a directional
-// light over the square that holds the sphere's shadow (E * area / N each).
+// that holds the grid's bounding sphere (I * solid angle / N each); a sphere
+// light four times as many, in four strata of its disk; a directional light
+// over the square that holds the sphere's shadow (E * area / N each).
 RayMap rayMapFor(const std::vector<Light>& lights, const GridShape& grid, int count, uint64_t seed);
 
 }  // namespace lucent::hybrid

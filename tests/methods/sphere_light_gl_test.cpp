@@ -1,7 +1,8 @@
 // Sphere lights in every method. As the radius shrinks each method's image
 // tends to its image under the point light; with a radius, a blocker casts a
 // soft shadow, which ss and the path tracer (single scattering) draw as the
-// reference does by integrating the light's cone.
+// reference does by integrating the light's cone, and lbl and mdom as the path
+// tracer does in full transport.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,6 +102,41 @@ TEST(SphereLight, SsAndThePathTracerSoftenTheShadowAsTheReferenceDoes) {
     EXPECT_GT(none, 0.025);  // the softening is there to be drawn
     EXPECT_LT(ss, 0.025);
     EXPECT_LT(path, 0.025);
+}
+
+// lbl and mdom against full transport: their softening from the path
+// tracer's, within the same quarter of their goal. lbl's photons and the path
+// tracer are random: each draws the scene twice, and the difference of two
+// softenings, twice a softening's noise, takes the noise out.
+TEST(SphereLight, LblAndMdomSoftenTheShadowAsThePathTracerDoes) {
+    auto s = slab(true);
+    const auto draw = [&](const std::string& name, const std::map<std::string, double>& values, uint64_t seed,
+                          double radius) {
+        const MethodEntry& entry = findMethod(name);
+        MethodOptions options(entry.options);
+        for (const auto& [option, value] : values) options.set(option, value);
+        MethodSettings settings;
+        settings.surface = false;
+        settings.seed = seed;
+        s->scene.desc.lights[0].radius = radius;
+        return renderWith(entry, *entry.create(options), s->scene, settings);
+    };
+    const std::map<std::string, double> paths{{"samples", 1024}};
+    const Image soft = draw("path", paths, 1, 1.0), hard = draw("path", paths, 1, 0.0);
+    const double pathNoise = softeningError(draw("path", paths, 2, 1.0), draw("path", paths, 2, 0.0), soft, hard);
+    for (const auto& [name, values] : std::vector<std::pair<std::string, std::map<std::string, double>>>{
+             {"lbl", {{"grid", 40}}}, {"mdom", {{"grid", 40}, {"directions", 24}}}}) {
+        const Image mSoft = draw(name, values, 1, 1.0), mHard = draw(name, values, 1, 0.0);
+        const double e = softeningError(mSoft, mHard, soft, hard);
+        const double noise = softeningError(draw(name, values, 2, 1.0), draw(name, values, 2, 0.0), mSoft, mHard);
+        const double bias = std::sqrt(std::max(e * e - (pathNoise * pathNoise + noise * noise) / 2.0, 0.0));
+        std::printf(
+            "added by the sphere light: %s %.4f (%.4f with the noise of its softening %.4f and the path "
+            "tracer's %.4f)\n",
+            name.c_str(), bias, e, noise / std::sqrt(2.0), pathNoise / std::sqrt(2.0));
+        EXPECT_LT(bias, 0.025) << name;
+    }
+    std::printf("as a point: %.4f\n", softeningError(hard, hard, soft, hard));
 }
 
 }  // namespace
