@@ -14,41 +14,58 @@ namespace {
 
 bool refracts(const VolumeObject& o) { return o.desc().medium.ior != 1.0; }
 
+struct Background {
+    const std::vector<VolumeObject>& objects;
+    const EnvironmentMap& map;
+    const BackgroundEdits& edits;
+    const CameraRays rays;
+};
+
 // Pixels [x0, x1) of row y, at most MeshRaycaster::kPacket: their rays side by
-// side cross each object as one packet (VolumeObject::densityPaths).
-void backgroundOfRun(const LoadedScene& scene, const CameraRays& rays, int y, int x0, int x1, Image& image) {
+// side cross each object as one packet (VolumeObject::densityPaths), in the
+// object's own world: from where edits place it back to where it was loaded.
+void backgroundOfRun(const Background& b, int y, int x0, int x1, Image& image) {
     constexpr size_t kPacket = MeshRaycaster::kPacket;
     const size_t count = size_t(x1 - x0);
-    std::array<Vec3, kPacket> origins, dirs;
+    std::array<Vec3, kPacket> dirs, ownOrigins, ownDirs;
     std::array<double, kPacket> paths;
     std::array<Rgb, kPacket> tau;
     for (size_t k = 0; k < count; ++k) {
-        origins[k] = rays.origin();
-        dirs[k] = rays.direction(x0 + int(k) + 0.5, y + 0.5);
+        dirs[k] = b.rays.direction(x0 + int(k) + 0.5, y + 0.5);
         tau[k] = Rgb(0.0);
     }
-    for (const VolumeObject& o : scene.objects) {
+    for (size_t i = 0; i < b.objects.size(); ++i) {
+        const VolumeObject& o = b.objects[i];
+        const Similarity& own = o.placement();
+        const Similarity& placed = b.edits.placements.empty() ? own : b.edits.placements[i];
+        const Vec3 origin = own.point(placed.inversePoint(b.rays.origin()));
+        for (size_t k = 0; k < count; ++k) {
+            ownOrigins[k] = origin;
+            ownDirs[k] = glm::normalize(own.direction(placed.inverseDirection(dirs[k])));
+        }
         if (refracts(o)) {
             for (size_t k = 0; k < count; ++k)
-                if (o.boundary().firstHit(origins[k], dirs[k]) < kInfinity) tau[k] = Rgb(kInfinity);
+                if (o.boundary().firstHit(ownOrigins[k], ownDirs[k]) < kInfinity) tau[k] = Rgb(kInfinity);
             continue;
         }
-        o.densityPaths(std::span(origins.data(), count), std::span(dirs.data(), count), false,
+        o.densityPaths(std::span(ownOrigins.data(), count), std::span(ownDirs.data(), count), false,
                        std::span(paths.data(), count));
+        // Lengths in the object's own world over those in the camera's.
+        const double ownPerWorld = own.scale / placed.scale;
+        const Rgb sigmaT = b.edits.extinctionScale * o.desc().medium.sigmaT / ownPerWorld;
         // A blocker on the way makes the path infinite: the ray stops there.
-        for (size_t k = 0; k < count; ++k)
-            tau[k] += paths[k] == kInfinity ? Rgb(kInfinity) : o.desc().medium.sigmaT * paths[k];
+        for (size_t k = 0; k < count; ++k) tau[k] += paths[k] == kInfinity ? Rgb(kInfinity) : sigmaT * paths[k];
     }
+    const glm::dmat3 unturn = glm::transpose(b.edits.turn);
     for (size_t k = 0; k < count; ++k)
-        image.at(x0 + int(k), y) = glm::vec3(scene.environment->radiance(dirs[k]) * glm::exp(-tau[k]));
+        image.at(x0 + int(k), y) = glm::vec3(b.edits.scale * b.map.radiance(unturn * dirs[k]) * glm::exp(-tau[k]));
 }
 
 }  // namespace
 
-Image environmentBackground(const LoadedScene& scene, int threads) {
-    if (!scene.environment || !scene.desc.render.background) return {};
-    const Camera& camera = scene.desc.camera;
-    const CameraRays rays(camera);
+Image environmentBackground(const std::vector<VolumeObject>& objects, const EnvironmentMap& map, const Camera& camera,
+                            const BackgroundEdits& edits, int threads) {
+    const Background b{objects, map, edits, CameraRays(camera)};
     Image image(camera.width, camera.height);
     const int packet = int(MeshRaycaster::kPacket);
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
@@ -56,10 +73,15 @@ Image environmentBackground(const LoadedScene& scene, int threads) {
         tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
             for (int y = rows.begin(); y < rows.end(); ++y)
                 for (int x = 0; x < camera.width; x += packet)
-                    backgroundOfRun(scene, rays, y, x, std::min(x + packet, camera.width), image);
+                    backgroundOfRun(b, y, x, std::min(x + packet, camera.width), image);
         });
     });
     return image;
+}
+
+Image environmentBackground(const LoadedScene& scene, int threads) {
+    if (!scene.environment || !scene.desc.render.background) return {};
+    return environmentBackground(scene.objects, *scene.environment, scene.desc.camera, BackgroundEdits{}, threads);
 }
 
 std::vector<std::string> environmentBackgroundLimitations(const LoadedScene& scene) {

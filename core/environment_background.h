@@ -6,16 +6,31 @@
 // opaque blocker on the ray hides it. This is the reference's background
 // (reference/reference_renderer.cpp), one ray through each pixel's centre, so that
 // ss, lbl and mdom draw the same and add only their scattering.
+#include <vector>
+
 #include "core/image.h"
 #include "core/loaded_scene.h"
+#include "core/similarity.h"
 
 namespace lucent {
 
 // The background image at the scene camera's size, or an empty image when the
 // scene has no environment or no background. A pixel whose ray meets an
 // object with a refracting boundary (ior not 1) gets none: the light behind
-// bends through it, which only the path tracer follows (environmentBackgroundLimitation).
+// bends through it, which only the path tracer follows (environmentBackgroundLimitations).
 Image environmentBackground(const LoadedScene& scene, int threads);
+
+// Where a host has moved things since the scene was loaded, as the viewer does.
+struct BackgroundEdits {
+    std::vector<Similarity> placements;  // each object's, in place of its own (VolumeObject::placement)
+    double extinctionScale = 1.0;        // every sigma_t times this
+    glm::dmat3 turn{1.0};                // the map's directions turned by this
+    double scale = 1.0;                  // the map's radiance times this
+};
+
+// The same for the camera, the map and the objects given, moved by edits.
+Image environmentBackground(const std::vector<VolumeObject>& objects, const EnvironmentMap& map, const Camera& camera,
+                            const BackgroundEdits& edits, int threads);
 
 // What environmentBackground leaves out in this scene, for a method's
 // limitations(); empty when nothing.

@@ -68,6 +68,18 @@ Image OffscreenFrame::read() const {
     return image;
 }
 
+void OffscreenFrame::add(const Image& image) const {
+    if (image.width != width_ || image.height != height_)
+        throw Error("OffscreenFrame::add: an image of " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + " added to a frame of " + std::to_string(width_) + "x" +
+                    std::to_string(height_));
+    Image sum = read();
+    for (size_t p = 0; p < sum.pixels.size(); ++p) sum.pixels[p] += image.pixels[p];
+    const auto row = [&](int y) { return sum.pixels.begin() + std::ptrdiff_t(y) * width_; };
+    for (int y = 0; y < height_ / 2; ++y) std::swap_ranges(row(y), row(y + 1), row(height_ - 1 - y));
+    glTextureSubImage2D(colour_, 0, 0, 0, width_, height_, GL_RGB, GL_FLOAT, sum.pixels.data());
+}
+
 void OffscreenFrame::present(int windowWidth, int windowHeight, int x, int y, float exposure) const {
     if (!presenter_) presenter_ = std::make_unique<Presenter>();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

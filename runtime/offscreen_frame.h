@@ -19,6 +19,9 @@ public:
     GlName depthTexture() const { return depth_; }
     GlName colourTexture() const { return colour_; }
     Image read() const;  // row 0 at the top; non-finite and negative values as 0
+    // Adds image (row 0 at the top, the frame's size) to what the frame holds:
+    // light found on the CPU, such as the environment's background.
+    void add(const Image& image) const;
 
     // Shows the frame in the current context's default framebuffer (a window's
     // back buffer) of windowWidth x windowHeight: the window cleared to black,

@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <cstdio>
 #include <sstream>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/environment_background.h"
 #include "core/environment_map.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -318,17 +320,22 @@ public:
             // nothing to unscale.
             const std::shared_ptr<const EnvironmentMap>& map = loaded.environment;
             if (map && map->scale() > 0.0) {
-                useEnvironment(*map, 1.0 / map->scale());
+                useEnvironment(map, 1.0 / map->scale());
             } else {
                 EnvironmentDesc unscaled = *scene.environment;
                 unscaled.scale = 1.0;
-                useEnvironment(*EnvironmentMap::load(unscaled));
+                useEnvironment(EnvironmentMap::load(unscaled));
             }
         }
     }
 
-    // The map's lights, their power times factor.
-    void useEnvironment(const EnvironmentMap& map, double factor = 1.0) {
+    // The map's lights, their power times factor; the map itself, for the background.
+    void useEnvironment(std::shared_ptr<const EnvironmentMap> map, double factor = 1.0) {
+        environment_ = std::move(map);
+        environmentFactor_ = factor;
+        useEnvironmentLights(*environment_, factor);
+    }
+    void useEnvironmentLights(const EnvironmentMap& map, double factor) {
         environmentLights_ = map.asDirectionalLights(SsOptions().environmentLights);
         gridEnvironmentLights_ = map.asDirectionalLights(kGridEnvironmentLights);
         for (auto* lights : {&environmentLights_, &gridEnvironmentLights_})
@@ -340,7 +347,7 @@ public:
         try {
             EnvironmentDesc desc;
             desc.file = file;
-            useEnvironment(*EnvironmentMap::load(desc));
+            useEnvironment(EnvironmentMap::load(desc));
             state_.hasEnvironment = true;
             state_.lightsChanged = true;
         } catch (const Error& e) {
@@ -495,8 +502,16 @@ private:
         drawOptions.scattering = state_.scattering;
         drawOptions.extinctionScale = state_.extinctionScale;
         drawOptions.tracedLight = state_.tracedLight;
+        // The environment behind and through the objects, on the CPU while the frame draws.
+        std::future<Image> background;
+        if (environment_ && state_.background)
+            background = std::async(std::launch::async, [this] {
+                return environmentBackground(loaded_.objects, *environment_, state_.camera.camera(), backgroundEdits(),
+                                             0);
+            });
         frameMs_ =
             1e3 * timeGlWork([&] { renderer_.draw(viewSetupFor(state_.camera.camera(), bounds_), drawOptions); });
+        if (background.valid()) frame_->add(background.get());
         drawTimes_.push_back(frameMs_);
         if (std::isnan(state_.exposureStops)) state_.exposureStops = std::log2(autoExposure(frame_->read()));
     }
@@ -548,6 +563,7 @@ private:
         ImGui::Checkbox("surface", &state_.surface);
         ImGui::SameLine();
         ImGui::Checkbox("scattering", &state_.scattering);
+        if (environment_) ImGui::Checkbox("background", &state_.background);
         ImGui::SameLine();
         ImGui::Checkbox("traced light", &state_.tracedLight);
         tooltip("ss", "light");
@@ -596,13 +612,27 @@ private:
     // The scene's environment at scale 1 as the directional lights ss draws it
     // as, and as the fewer lbl and mdom solve for (methods/grid_method.h).
     std::vector<Light> environmentLights_, gridEnvironmentLights_;
+    std::shared_ptr<const EnvironmentMap> environment_;  // the map those came from
+    double environmentFactor_ = 1.0;                     // its radiance times this is at scale 1
 
     bool environmentProjected_ = false;  // given to setEnvironment rather than setLights
 
+    // The map's turn about +y, as the panel and the script set it.
+    glm::dmat3 environmentTurn() const {
+        return makeSimilarity(1.0, Vec3(0.0, 1.0, 0.0), state_.environmentTurnDegrees, Vec3(0.0)).rotation;
+    }
+    // What the background is drawn with: the objects where they stand now, the map turned and scaled.
+    BackgroundEdits backgroundEdits() const {
+        BackgroundEdits edits;
+        edits.placements = state_.placements;
+        edits.extinctionScale = state_.extinctionScale;
+        edits.turn = environmentTurn();
+        edits.scale = environmentFactor_ * state_.environmentScale;
+        return edits;
+    }
     // The environment's lights scaled and turned as the state says.
     std::vector<Light> environmentNow(std::vector<Light> environment) const {
-        const glm::dmat3 turn =
-            makeSimilarity(1.0, Vec3(0.0, 1.0, 0.0), state_.environmentTurnDegrees, Vec3(0.0)).rotation;
+        const glm::dmat3 turn = environmentTurn();
         for (Light& l : environment) {
             l.direction = turn * l.direction;
             l.power *= state_.environmentScale;

@@ -243,6 +243,8 @@ void applyScriptLine(ViewerState& state, const std::string& raw, const std::stri
         state.waiting = true;
     } else if (command == "scattering") {
         state.scattering = onOff(in, where);
+    } else if (command == "background") {
+        state.background = onOff(in, where);
     } else if (command == "screenshot") {
         std::string file;
         if (!(in >> file)) throw Error(where, "screenshot needs a file name");

@@ -15,7 +15,8 @@ struct ViewerState {
         : camera(scene.camera),
           lights(scene.lights),
           hasEnvironment(scene.environment.has_value()),
-          environmentScale(scene.environment ? scene.environment->scale : 1.0) {
+          environmentScale(scene.environment ? scene.environment->scale : 1.0),
+          background(scene.render.background) {
         for (const ObjectDesc& o : scene.objects) {
             placements.push_back(o.transform);
             iors.push_back(o.medium.ior);
@@ -30,6 +31,9 @@ struct ViewerState {
     // rotation, which `environment scale S`, `environment turn DEGREES` and the panel change.
     bool hasEnvironment = false;
     double environmentScale = 1.0, environmentTurnDegrees = 0.0;
+    // The map drawn behind the objects and through them, as ss draws it with
+    // "background": true (core/environment_background.h); `background on|off` and the panel.
+    bool background = false;
     // A map file `environment load FILE` (or the panel) asks for: loaded before
     // the next frame in place of the scene's, or the first; when it cannot be
     // read, a warning says why and the environment stays as it was.

@@ -101,6 +101,54 @@ TEST(Viewer, TheEnvironmentIsDrawnAsSsDrawsItAndTurnsAndScales) {
     EXPECT_EQ(meanHalf(c, true) + meanHalf(c, false), 0.0);
 }
 
+// An 8 x 4 Radiance file whose texels all differ: (1 + i + 8 j) / 8 for texel (i, j).
+std::string gradedRadianceFile() {
+    std::string text = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 8; ++i) {
+            int exponent = 0;
+            const double mantissa = std::frexp((1.0 + i + 8 * j) / 8.0, &exponent);
+            const char m = char(int(mantissa * 256.0));
+            text += std::string{m, m, m, char(exponent + 128)};
+        }
+    return text;
+}
+
+// The environment's background ("background": true) follows a moved object and
+// a turned map as ss draws the scene that says so, and `background off` leaves
+// the scattered light alone.
+TEST(Viewer, TheBackgroundFollowsTheMovedObjectAndTheTurnedMapAsTheSceneSays) {
+    test::ScratchDir dir;
+    dir.write("sky.hdr", gradedRadianceFile());
+    const std::string head = R"({
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "fov_y": 30, "width": 64, "height": 64},)";
+    const std::string object = R"("objects": [{"mesh": ")" + (test::modelsDir() / "sphere.obj").string() +
+                               R"(", "medium": {"sigma_t": 1.5, "albedo": 0.75}, "samples": "s.lsf")";
+    const std::string render = R"("render": {"surface": false, "background": true}})";
+    const auto scene = dir.write(
+        "scene.json", head + R"("lights": [{"type": "environment", "file": "sky.hdr"}],)" + object + "}]," + render);
+    const auto placed =
+        dir.write("placed.json", head + R"("lights": [{"type": "environment", "file": "sky.hdr",
+                                      "rotate": {"axis": [0, 1, 0], "degrees": 90}}],)" +
+                                     object + R"(, "transform": {"translate": [0.4, 0, 0]}}],)" + render);
+    ASSERT_EQ(test::runLucent("preprocess " + scene.string() + " --quality draft --samples 2000").exitCode, 0);
+    const auto shot = dir.path() / "shot.pfm", without = dir.path() / "without.pfm";
+    const auto script = dir.write("bg.txt", "select 0\nmove 0.4 0 0\nenvironment turn 90\nscreenshot " + shot.string() +
+                                                "\nbackground off\nscreenshot " + without.string() + "\nquit\n");
+    const auto run = test::runLucent("view " + scene.string() + " --script " + script.string(),
+                                     "xvfb-run -a -s '-screen 0 320x240x24'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const auto rendered = dir.path() / "ss.pfm";
+    ASSERT_EQ(test::runLucent("render " + placed.string() + " --method ss -o " + rendered.string()).exitCode, 0);
+    const Image a = readPfm(shot), b = readPfm(without), truth = readPfm(rendered);
+    // The same passes and the same rays: a tenth of what a turn of one texel
+    // (45 degrees) or a move of a pixel changes.
+    EXPECT_LT(compareImages(a, truth).relativeRmse, 1e-3);
+    // Without the background: dark where no object is, and the background is what was added.
+    EXPECT_EQ(b.at(0, 0), glm::vec3(0.0f));
+    EXPECT_GT(a.at(0, 0).g, 0.1f);
+}
+
 // A map loaded into a scene without an environment lights it as the scene with
 // that map does; a file that is no map leaves it as it was, with a warning.
 TEST(Viewer, AnEnvironmentMapLoadedLiveLightsTheSceneAsTheSceneFileWould) {

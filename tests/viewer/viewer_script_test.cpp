@@ -58,6 +58,9 @@ TEST(ViewerScript, CommandsChangeWhatTheySay) {
     EXPECT_TRUE(state.tracedLight);
     applyScriptLine(state, "traced off", "s:8");
     EXPECT_FALSE(state.tracedLight);
+    EXPECT_FALSE(state.background);  // the scene's setting
+    applyScriptLine(state, "background on", "s:8");
+    EXPECT_TRUE(state.background);
     applyScriptLine(state, "screenshot a.png", "s:9");
     applyScriptLine(state, "screenshot b.png panel", "s:9");
     const std::vector<ViewerState::Screenshot> shots = {{"a.png", false}, {"b.png", true}};
