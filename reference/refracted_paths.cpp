@@ -10,9 +10,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/environment_map.h"
 #include "core/math.h"
 #include "reference/light_arrival.h"
 #include "reference/path_channels.h"
+#include "reference/quadrature.h"
 #include "reference/path_tracer.h"
 #include "core/refraction.h"
 
@@ -44,13 +46,41 @@ double cross(const BoundaryHit& hit, const VolumeObject& object, Vec3& w, const 
     return cosine > 0.0 ? (hit.entering ? 1.0 / (n * n) : n * n) : 1.0;
 }
 
+// Whether the solve for light arriving at x from outside along -w (a
+// directional light, as gatherLightsRefracted draws the environment's) finds
+// the ray that leaves o at exitPoint: then that collision gathered this way out.
+bool solvedAlike(const VolumeObject& o, const Vec3& x, const Vec3& w, const Vec3& exitPoint) {
+    Light light;
+    light.type = Light::Type::Directional;
+    light.direction = -w;
+    const std::optional<RefractedArrival> a = lightThroughBoundary(o, light, x);
+    return a && glm::length(a->entry - exitPoint) < 1e-5 * o.boundary().bounds().diagonal();
+}
+
 }  // namespace
 
 Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x, const Vec3& dir,
                                       PathSampler& rng) const {
-    // The lights only: in a refracting scene the environment is met by escaping paths alone.
+    // In an index-matched object, the lights only: the environment is met by escaping paths.
     if (object.desc().medium.ior == 1.0) return gatherSceneLights(object, x, dir, rng);
-    return lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
+    Rgb sum = lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
+    if (!environment_) return sum;
+    // The environment through the boundary: one direction outside drawn from the
+    // map, taken as a directional light of radiance over density (its estimate
+    // of the integral over the sphere), solved for as the lights are. A path that
+    // leaves after this collision by one refraction, with no reflection on the
+    // way, by the ray this solve finds, brings what this gathers: it counts
+    // none of it (refractedRadiance).
+    // Without this, a small sun outside was met by escaping paths alone: 89%
+    // noise per pixel at 64 paths on a sphere of ior 1.5, 9% index-matched.
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const EnvironmentMap::Sample s = environment_->sample(u1, u2);
+    if (!(s.pdf > 0.0) || magnitude(s.radiance) == 0.0) return sum;
+    Light sun;
+    sun.type = Light::Type::Directional;
+    sun.direction = -s.toward;
+    sun.power = s.radiance / s.pdf;
+    return sum + lightsThroughBoundary(object, objects_, {sun}, x, dir);
 }
 
 PathTracer::Ahead PathTracer::ahead(const VolumeObject* inside, const Vec3& x, const Vec3& w, PathSampler& rng,
@@ -79,6 +109,11 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
     Vec3 x = origin, w = dir;
     Rgb throughput(1.0);
     int collisions = 0;
+    // Since the last collision, in a refracting object, the path has only gone
+    // straight out (refracted once, then on through index-matched objects).
+    bool gathered = false;
+    Vec3 collision(0.0), exitPoint(0.0);
+    const VolumeObject* collidedIn = nullptr;
     for (int events = 0; events < kMaxBoundaryEvents;) {
         const Ahead a = ahead(inside, x, w, rng, channel);
         if (a.collision) {
@@ -86,6 +121,9 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
             // The collision estimator, as in radiance(): the albedo is the collision's weight.
             throughput *= masked(inside->desc().medium.albedo, channel);
             total += throughput * masked(gatherLightsRefracted(*inside, x, w, rng), channel);
+            gathered = inside->desc().medium.ior != 1.0;
+            collision = x;
+            collidedIn = inside;
             if (++collisions >= settings.maxScatter) break;
             if (collisions > 3 && !survivesRoulette(throughput, rng)) break;
             double xi1, xi2;
@@ -95,14 +133,25 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
         }
         if (a.blocked) break;  // a blocker absorbs it
         if (!a.boundary) {
-            // It leaves: the environment is sampled by no collision here (the
-            // lights through a boundary are, the environment is not), so this
-            // is its whole estimate, unweighed.
-            total += throughput * masked(escaped(w, w, 0.0, collisions > 0, false), channel);
+            // It leaves. The environment it meets is the last collision's to
+            // gather when it left by the one refraction that collision's solve
+            // finds for this direction; otherwise (reflected inside first, from an
+            // index-matched object, or by a refraction the solve misses or does
+            // not find) this is the whole estimate, unweighed.
+            if (!gathered || !solvedAlike(*collidedIn, collision, w, exitPoint))
+                total += throughput * masked(escaped(w, w, 0.0, collisions > 0, false), channel);
             break;
         }
         x = a.boundary->point;
+        const VolumeObject* before = inside;
         throughput *= cross(*a.boundary, *a.object, w, inside, rng);
+        // Out by a refraction, or on through an index-matched object (its
+        // attenuation the gathered light counts): still the collision's straight way out.
+        const bool refractedOut = inside == nullptr && before != nullptr && before->desc().medium.ior != 1.0;
+        const bool straightOn = refractedOut || (inside == nullptr && before != nullptr) ||
+                                (inside != nullptr && before == nullptr && inside->desc().medium.ior == 1.0);
+        if (!straightOn) gathered = false;
+        if (refractedOut) exitPoint = x;
         ++events;
     }
     return total;
