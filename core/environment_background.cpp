@@ -1,5 +1,6 @@
 #include "core/environment_background.h"
 
+#include <algorithm>
 #include <array>
 
 #include <tbb/blocked_range.h>
@@ -7,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/camera_rays.h"
+#include "core/refraction.h"
 
 namespace lucent {
 
@@ -61,6 +63,31 @@ void backgroundOfRun(const Background& b, int y, int x0, int x1, Image& image) {
         image.at(x0 + int(k), y) = glm::vec3(b.edits.scale * b.map.radiance(unturn * dirs[k]) * glm::exp(-tau[k]));
 }
 
+// One pixel's background in a scene with a refracting object, its objects where
+// they were loaded: the camera ray followed through the boundaries with both
+// ways kept (core/refraction.h), each branch that leaves every object seeing the map.
+glm::vec3 backgroundThroughBoundaries(const Background& b, const Vec3& dir, const VolumeObject* cameraInside) {
+    Rgb total(0.0);
+    followRayBranches(b.objects, b.rays.origin(), dir, cameraInside, [&](const RayStretch& s) -> Rgb {
+        if (!s.inside) {
+            if (s.length == kInfinity)
+                total += s.weight * b.edits.scale * b.map.radiance(glm::transpose(b.edits.turn) * s.direction);
+            return Rgb(1.0);
+        }
+        if (s.blocked || s.length == kInfinity) return Rgb(0.0);
+        const double path = s.inside->densityPath(s.origin, s.direction, s.length);
+        return glm::exp(-b.edits.extinctionScale * s.inside->desc().medium.sigmaT * path);
+    });
+    return glm::vec3(total);
+}
+
+bool movedByEdits(const std::vector<VolumeObject>& objects, const BackgroundEdits& edits) {
+    if (edits.placements.empty()) return false;
+    for (size_t i = 0; i < objects.size(); ++i)
+        if (!(edits.placements[i] == objects[i].placement())) return true;
+    return false;
+}
+
 }  // namespace
 
 Image environmentBackground(const std::vector<VolumeObject>& objects, const EnvironmentMap& map, const Camera& camera,
@@ -68,12 +95,25 @@ Image environmentBackground(const std::vector<VolumeObject>& objects, const Envi
     const Background b{objects, map, edits, CameraRays(camera)};
     Image image(camera.width, camera.height);
     const int packet = int(MeshRaycaster::kPacket);
+    // Through a refracting boundary the ray bends and splits; with every object
+    // where it was loaded, it is followed so (backgroundOfRun draws none of it).
+    const bool bends = std::any_of(objects.begin(), objects.end(), refracts) && !movedByEdits(objects, edits);
+    const VolumeObject* cameraInside = nullptr;
+    for (const VolumeObject& o : objects)
+        if (bends && o.contains(camera.position)) cameraInside = &o;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
             for (int y = rows.begin(); y < rows.end(); ++y)
-                for (int x = 0; x < camera.width; x += packet)
-                    backgroundOfRun(b, y, x, std::min(x + packet, camera.width), image);
+                for (int x = 0; x < camera.width; x += packet) {
+                    if (!bends) {
+                        backgroundOfRun(b, y, x, std::min(x + packet, camera.width), image);
+                        continue;
+                    }
+                    for (int k = x; k < std::min(x + packet, camera.width); ++k)
+                        image.at(k, y) =
+                            backgroundThroughBoundaries(b, b.rays.direction(k + 0.5, y + 0.5), cameraInside);
+                }
         });
     });
     return image;
@@ -82,17 +122,6 @@ Image environmentBackground(const std::vector<VolumeObject>& objects, const Envi
 Image environmentBackground(const LoadedScene& scene, int threads) {
     if (!scene.environment || !scene.desc.render.background) return {};
     return environmentBackground(scene.objects, *scene.environment, scene.desc.camera, BackgroundEdits{}, threads);
-}
-
-std::vector<std::string> environmentBackgroundLimitations(const LoadedScene& scene) {
-    std::vector<std::string> out;
-    if (!scene.environment || !scene.desc.render.background) return out;
-    for (const VolumeObject& o : scene.objects)
-        if (refracts(o))
-            out.push_back("object '" + o.desc().name +
-                          "' refracts: the environment behind it is not drawn through it (\"background\": true; "
-                          "--method path bends it through the boundary)");
-    return out;
 }
 
 }  // namespace lucent

@@ -15,9 +15,11 @@
 namespace lucent {
 
 // The background image at the scene camera's size, or an empty image when the
-// scene has no environment or no background. A pixel whose ray meets an
-// object with a refracting boundary (ior not 1) gets none: the light behind
-// bends through it, which only the path tracer follows (environmentBackgroundLimitations).
+// scene has no environment or no background. Through an object with a
+// refracting boundary (ior not 1) the ray is followed as the reference follows
+// it (core/refraction.h, followRayBranches): reflected off the boundary and
+// refracted through it, each way with its share, so the map is seen bent
+// through the object and mirrored in it.
 Image environmentBackground(const LoadedScene& scene, int threads);
 
 // Where a host has moved things since the scene was loaded, as the viewer does.
@@ -28,12 +30,10 @@ struct BackgroundEdits {
     double scale = 1.0;                  // the map's radiance times this
 };
 
-// The same for the camera, the map and the objects given, moved by edits.
+// The same for the camera, the map and the objects given, moved by edits. With
+// an object moved from where it was loaded, the rays go straight, and through
+// a refracting object none of the map is drawn.
 Image environmentBackground(const std::vector<VolumeObject>& objects, const EnvironmentMap& map, const Camera& camera,
                             const BackgroundEdits& edits, int threads);
-
-// What environmentBackground leaves out in this scene, for a method's
-// limitations(); empty when nothing.
-std::vector<std::string> environmentBackgroundLimitations(const LoadedScene& scene);
 
 }  // namespace lucent

@@ -20,12 +20,6 @@ std::unique_ptr<Method> ReferenceMethod::create(const MethodOptions& options) {
 std::vector<std::string> ReferenceMethod::limitations(const LoadedScene& scene, const MethodSettings&) const {
     std::vector<std::string> out = overlappingRefractors(scene, "the reference");
     for (std::string& line : sphereLightsThroughBoundaries(scene.desc)) out.push_back(std::move(line));
-    if (scene.environment && scene.desc.render.background &&
-        std::any_of(scene.objects.begin(), scene.objects.end(),
-                    [](const VolumeObject& o) { return o.desc().medium.ior != 1.0; }))
-        out.push_back(
-            "the environment: the reference draws no background in a scene with a refracting boundary (--method "
-            "path does)");
     return out;
 }
 

@@ -56,10 +56,6 @@ private:
     // radiance() less the surface term in a scene with a refracting boundary
     // (reference_refracted.cpp): the ray followed from boundary to boundary.
     Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
-    // One branch of it: the ray at x along w, inside the object inside (or
-    // nullptr), carrying weight after events boundary crossings.
-    Rgb followRefracted(const Vec3& x, const Vec3& w, const VolumeObject* inside, const Rgb& weight, int events,
-                        const ReferenceSettings& settings) const;
     // sum_j p E_j(x) T(x, l_j), the lights reaching x along straight lines.
     Rgb straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
     Rgb inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;

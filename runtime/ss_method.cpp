@@ -152,7 +152,6 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
 
 std::vector<std::string> SsMethod::sampleLimitations(const LoadedScene& scene, const SsOptions& options) {
     std::vector<std::string> out = sphereLightsThroughBoundaries(scene.desc);
-    for (std::string& line : environmentBackgroundLimitations(scene)) out.push_back(std::move(line));
     // Measured on the sphere under a sky with a sun at 96x96, against the reference
     // (32 directions; traced and --light sh alike): 3-5% for g in [-0.3, 0.8].
     for (const VolumeObject& o : scene.objects)
