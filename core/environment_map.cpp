@@ -238,13 +238,22 @@ double EnvironmentMap::pdf(const Vec3& toward) const {
     return texelProbability_[size_t(i)] * width_ * height_ / (2.0 * kPi * kPi * sinTheta);
 }
 
+glm::dvec2 stratifiedPoint(int k, int count) {
+    return {(k + 0.5) / count, std::fmod(radicalInverseBase2(uint32_t(k)) + 0.5 / count, 1.0)};
+}
+
+std::vector<EnvironmentMap::Sample> EnvironmentMap::stratifiedSamples(int count) const {
+    std::vector<Sample> out;
+    for (int k = 0; k < count; ++k) {
+        const glm::dvec2 u = stratifiedPoint(k, count);
+        out.push_back(sample(u.x, u.y));
+    }
+    return out;
+}
+
 std::vector<Light> EnvironmentMap::asDirectionalLights(int count) const {
     std::vector<Light> lights;
-    for (int k = 0; k < count; ++k) {
-        // A Hammersley point set, shifted off the poles: well spread for any count,
-        // and the same every run.
-        const double u1 = (k + 0.5) / count, u2 = std::fmod(radicalInverseBase2(uint32_t(k)) + 0.5 / count, 1.0);
-        const Sample s = sample(u1, u2);
+    for (const Sample& s : stratifiedSamples(count)) {
         // A black direction adds nothing but its cost.
         if (!(s.pdf > 0.0) || std::max({s.radiance.r, s.radiance.g, s.radiance.b}) <= 0.0) continue;
         Light l;

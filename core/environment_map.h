@@ -24,6 +24,10 @@
 
 namespace lucent {
 
+// Point k of a Hammersley set of count points in [0, 1)^2, shifted off the
+// poles: well spread for any count, and the same every run.
+glm::dvec2 stratifiedPoint(int k, int count);
+
 class EnvironmentMap {
 public:
     // pixels: the map as read (row 0 the top), every value finite and >= 0.
@@ -46,6 +50,8 @@ public:
     // The density per steradian with which sample() draws the direction toward.
     double pdf(const Vec3& toward) const;
 
+    // count directions drawn by sample() from stratifiedPoint(k, count).
+    std::vector<Sample> stratifiedSamples(int count) const;
     // The map as count directional lights that a method without its own
     // environment sampling renders: count directions drawn by sample() from a
     // stratified grid (deterministic), each with irradiance L / (pdf count), so

@@ -14,6 +14,7 @@
 #include "core/camera_rays.h"
 #include "core/progress.h"
 #include "reference/light_arrival.h"
+#include "reference/path_tracer.h"
 #include "reference/quadrature.h"
 #include "reference/surface_reflection.h"
 
@@ -26,6 +27,7 @@ ReferenceRenderer::ReferenceRenderer(const SceneDesc& scene, const std::vector<V
       environment_(environment),
       lights_(withEnvironmentLights(scene.lights, environment, kReferenceEnvironmentDirections)) {
     for (const VolumeObject& o : objects_) refracting_ = refracting_ || o.desc().medium.ior != 1.0;
+    if (environment_) environmentSamples_ = environment_->stratifiedSamples(kReferenceEnvironmentDirections);
 }
 
 double ReferenceRenderer::densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const {
@@ -88,8 +90,34 @@ Rgb ReferenceRenderer::straightLights(const VolumeObject& object, const Vec3& x,
         return phase * a->irradiance * transmittanceToLight(objects_, x, *a);
     };
     Rgb sum(0.0);
-    for (const Light& light : lights_)
+    for (const Light& light : scene_.lights)
         sum += light.radius > 0.0 ? sphereLightCone(light, arriving) : arriving(light, 0.5, 0.5);
+    return environment_ ? sum + straightEnvironment(object, x, viewDir) : sum;
+}
+
+// Multiple importance sampling with both point sets of equal size N (the
+// balance heuristic, Veach 1997, 9.2.2): each direction adds f / (N (p_map +
+// p_phase)). With the map's directions alone the reference was 10% from the
+// path tracer at g = 0.9 and 22% at g = -0.9 (a sphere under a sky with a sun;
+// within 2% for |g| up to 0.8): a peaked lobe saw the map's directions one by one.
+Rgb ReferenceRenderer::straightEnvironment(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const {
+    const double g = object.desc().medium.g;
+    const double count = double(environmentSamples_.size());
+    const auto add = [&](const Vec3& toward, const Rgb& radiance, double mapPdf) {
+        const double phase = henyeyGreenstein(glm::dot(toward, viewDir), g);
+        if (magnitude(radiance) == 0.0 || !(mapPdf + phase > 0.0)) return Rgb(0.0);
+        const LightArrival arrival{toward, kInfinity, radiance};
+        return phase * radiance * transmittanceToLight(objects_, x, arrival) / (count * (mapPdf + phase));
+    };
+    Rgb sum(0.0);
+    for (const EnvironmentMap::Sample& s : environmentSamples_) sum += add(s.toward, s.radiance, s.pdf);
+    // The phase function's directions: the light's direction towards its source
+    // about the view's, at cosine mu with the density p(mu), on the same point set.
+    for (size_t k = 0; k < environmentSamples_.size(); ++k) {
+        const glm::dvec2 u = stratifiedPoint(int(k), int(environmentSamples_.size()));
+        const Vec3 toward = sampleHenyeyGreenstein(viewDir, g, u.x, u.y);
+        sum += add(toward, environment_->radiance(toward), environment_->pdf(toward));
+    }
     return sum;
 }
 

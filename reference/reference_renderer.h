@@ -13,9 +13,13 @@
 // it (core/refraction.h). It is then what `--method path --max-scatter 1`
 // converges to, without its noise.
 //
-// An environment light enters as kReferenceEnvironmentDirections directional
-// lights drawn from its map (EnvironmentMap::asDirectionalLights): a
-// quasi-Monte Carlo quadrature of the sphere, the same at every point.
+// An environment light is integrated over kReferenceEnvironmentDirections
+// directions drawn from its map (EnvironmentMap::stratifiedSamples) and as many
+// drawn from the phase function about the view, weighed by the balance
+// heuristic: a quasi-Monte Carlo quadrature of the sphere that finds both the
+// map's bright parts and a peaked phase function's lobe. Through a refracting
+// boundary, and in the surface term, the map's directions alone serve, as
+// directional lights (EnvironmentMap::asDirectionalLights).
 #include <vector>
 
 #include "core/environment_map.h"
@@ -58,14 +62,17 @@ private:
     Rgb refractedRadiance(const Vec3& origin, const Vec3& dir, const ReferenceSettings& settings) const;
     // sum_j p E_j(x) T(x, l_j), the lights reaching x along straight lines.
     Rgb straightLights(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
+    // The environment's share of straightLights (the quadrature above).
+    Rgb straightEnvironment(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
     Rgb inScattered(const VolumeObject& object, const Vec3& x, const Vec3& viewDir) const;
     double densityPathAllObjects(const Vec3& origin, const Vec3& dir, double tMax) const;
 
     const SceneDesc& scene_;
     const std::vector<VolumeObject>& objects_;
     const EnvironmentMap* environment_;
-    std::vector<Light> lights_;  // the scene's and the environment's
-    bool refracting_ = false;    // some object's ior differs from 1
+    std::vector<Light> lights_;                               // the scene's and the environment's
+    std::vector<EnvironmentMap::Sample> environmentSamples_;  // the map's directions
+    bool refracting_ = false;                                 // some object's ior differs from 1
 };
 
 }  // namespace lucent
