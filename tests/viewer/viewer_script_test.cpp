@@ -108,6 +108,7 @@ TEST(ViewerScript, RefusesWhatTheSceneParserRefuses) {
         {"screenshot a.pfm panel", "s:1: a screenshot with the panel is what the window shows: it must be a .png"},
         {"screenshot a.png all", "s:1: screenshot takes a file name and optionally 'panel'"},
         {"panel maybe", "s:1: expected on or off"},
+        {"background", "s:1: expected on or off"},
         {"zoom 0", "s:1: zoom needs a positive finite number"},
         {"light 7 position 0 0 0", "s:1: no light with that index (there are 1)"},
         {"fly away", "s:1: unknown command 'fly'"},
