@@ -147,11 +147,9 @@ Rgb PathTracer::refractedRadiance(const Vec3& origin, const Vec3& dir, PathSampl
         throughput *= cross(*a.boundary, *a.object, w, inside, rng);
         // Out by a refraction, or on through an index-matched object (its
         // attenuation the gathered light counts): still the collision's straight way out.
-        const bool refractedOut = inside == nullptr && before != nullptr && before->desc().medium.ior != 1.0;
-        const bool straightOn = refractedOut || (inside == nullptr && before != nullptr) ||
-                                (inside != nullptr && before == nullptr && inside->desc().medium.ior == 1.0);
-        if (!straightOn) gathered = false;
-        if (refractedOut) exitPoint = x;
+        const bool out = inside == nullptr && before != nullptr;
+        if (!out && !(inside != nullptr && before == nullptr && inside->desc().medium.ior == 1.0)) gathered = false;
+        if (out && before->desc().medium.ior != 1.0) exitPoint = x;
         ++events;
     }
     return total;

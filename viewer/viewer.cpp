@@ -333,11 +333,8 @@ public:
     void useEnvironment(std::shared_ptr<const EnvironmentMap> map, double factor = 1.0) {
         environment_ = std::move(map);
         environmentFactor_ = factor;
-        useEnvironmentLights(*environment_, factor);
-    }
-    void useEnvironmentLights(const EnvironmentMap& map, double factor) {
-        environmentLights_ = map.asDirectionalLights(SsOptions().environmentLights);
-        gridEnvironmentLights_ = map.asDirectionalLights(kGridEnvironmentLights);
+        environmentLights_ = environment_->asDirectionalLights(SsOptions().environmentLights);
+        gridEnvironmentLights_ = environment_->asDirectionalLights(kGridEnvironmentLights);
         for (auto* lights : {&environmentLights_, &gridEnvironmentLights_})
             for (Light& l : *lights) l.power *= factor;
     }
