@@ -214,11 +214,11 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         "and at the ior\n\n",
         size, size, kPixelStrata * size, kPixelStrata * size, kPixelStrata, kPixelStrata, spp, frameSize, frameSize,
         frames, size, size, repeats);
-    out.tableHeader({"model", "ior", "path noise", "ss vs single", "ss vs single, pixel means", "ss", "lbl", "mdom", "lbl mean ratio",
-                     "ss frame at ior 1 (ms)", "ss frame (ms)", "frame ratio", "ss render at ior 1 (s)",
-                     "ss render (s)", "render ratio", "reference (s)", "path (s)"},
-                    {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true,
-                     true});
+    out.tableHeader(
+        {"model", "ior", "path noise", "ss vs single", "ss vs single, pixel means", "ss", "lbl", "mdom",
+         "lbl mean ratio", "ss frame at ior 1 (ms)", "ss frame (ms)", "frame ratio", "ss render at ior 1 (s)",
+         "ss render (s)", "render ratio", "reference (s)", "path (s)"},
+        {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true});
     for (const std::string model : {"sphere", "bunny"}) {
         SceneDesc matched = refractionScene(model, 1.0);
         matched.camera.width = matched.camera.height = size;
@@ -247,15 +247,15 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
             out.print(
-                "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | "
+                "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | "
+                "%.2f | "
                 "%.1f "
                 "| %.1f |\n",
                 model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
-                ssAgainstSingleOverPixels(scene, samples, settings),
-                luminanceRelativeRmse(ss, pathA, pathB).debiased, lblError.debiased,
-                luminanceRelativeRmse(mdom, pathA, pathB).debiased, meanLuminance(lbl) / meanLuminance(path),
-                matchedFrameMs, frameMs, frameMs / matchedFrameMs, matchedSeconds, ssSeconds,
-                ssSeconds / matchedSeconds, referenceSeconds, truth.seconds);
+                ssAgainstSingleOverPixels(scene, samples, settings), luminanceRelativeRmse(ss, pathA, pathB).debiased,
+                lblError.debiased, luminanceRelativeRmse(mdom, pathA, pathB).debiased,
+                meanLuminance(lbl) / meanLuminance(path), matchedFrameMs, frameMs, frameMs / matchedFrameMs,
+                matchedSeconds, ssSeconds, ssSeconds / matchedSeconds, referenceSeconds, truth.seconds);
         }
     }
 }
