@@ -135,10 +135,12 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
             continue;
         }
         // Measured by lucent-bench-hybrid refraction (docs/results/refraction.md).
-        out.push_back(object +
-                      ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
-                      "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
-                      "from the refracting reference on the sphere, 12-13% on the wax bunny at ior 1.33-1.5");
+        out.push_back(
+            object +
+            ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
+            "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
+            "from the refracting reference on the sphere, 12-13% on the wax bunny at ior 1.33-1.5 (10-12% over "
+            "pixel means: caustics finer than a pixel)");
         // The refracted view starts where the camera's ray enters the object.
         if (o.contains(scene.desc.camera.position))
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
