@@ -209,8 +209,9 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         "relative RMSE of luminance, %dx%d, no surface term: ss against --method reference (single scattering, "
         "refracting), at each pixel's centre and over pixel means (both drawn at %dx%d and averaged over %dx%d "
         "sub-pixels), and ss, lbl and mdom (default options) against --method path at %d paths per pixel (its "
-        "noise taken out); ss's frame at %dx%d drawn again with its light and view cached (ms, the median of %d), "
-        "and its whole render at %dx%d (s, the median of %d, with the light's solve through the boundary), at ior 1 "
+        "noise taken out); ss's frame at %dx%d drawn again with its light and view cached (ms, the median of %d, "
+        "drawn in turn with the index-matched one), and its whole render at %dx%d (s, the median of %d, with the "
+        "light's solve through the boundary), at ior 1 "
         "and at the ior\n\n",
         size, size, kPixelStrata * size, kPixelStrata * size, kPixelStrata, kPixelStrata, spp, frameSize, frameSize,
         frames, size, size, repeats);
@@ -229,7 +230,6 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         MethodSettings settings;
         settings.surface = false;
         const double matchedSeconds = medianRenderSeconds(indexMatched, settings, repeats);
-        const double matchedFrameMs = ssFrameMs(indexMatched, frameSize, frames);
         for (double ior : iors) {
             SceneDesc scene = refractionScene(model, ior);
             scene.camera = matched.camera;
@@ -242,7 +242,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const double referenceSeconds = stopwatch.seconds();
             const Image ss = renderWith(findMethod("ss"), loaded, settings);
             const double ssSeconds = medianRenderSeconds(loaded, settings, repeats);
-            const double frameMs = ssFrameMs(loaded, frameSize, frames);
+            const auto [matchedFrameMs, frameMs] = ssFrameMsInTurn(indexMatched, loaded, frameSize, frames);
             const Image lbl = renderWith(findMethod("lbl"), loaded, settings);
             const Image mdom = renderWith(findMethod("mdom"), loaded, settings);
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
