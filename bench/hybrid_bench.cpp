@@ -23,10 +23,11 @@
 // own noise, measured from the two, is taken out of the errors.
 // refraction: on the sphere (sigma_t 2, albedo 0.75) and the wax bunny (sigma_t
 // 8, albedo 0.95, one point light) at each ior: ss against the refracting
-// single-scattering reference (at pixel centres, and over pixel means), and ss, lbl and mdom against the path tracer
-// (its noise taken out); and ss's frame drawn again with its light and view
-// cached, and its whole render, at ior 1 and at that ior, the medians
-// measured in the same run.
+// single-scattering reference (at pixel centres, and over pixel means), and
+// ss, lbl and mdom against the path tracer (its noise taken out); and ss's
+// frame drawn again with its light and view cached (in turn with the
+// index-matched frame), and its whole render, at ior 1 and at that ior, the
+// medians measured in the same run.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -211,8 +212,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
         "sub-pixels), and ss, lbl and mdom (default options) against --method path at %d paths per pixel (its "
         "noise taken out); ss's frame at %dx%d drawn again with its light and view cached (ms, the median of %d, "
         "drawn in turn with the index-matched one), and its whole render at %dx%d (s, the median of %d, with the "
-        "light's solve through the boundary), at ior 1 "
-        "and at the ior\n\n",
+        "light's solve through the boundary), at ior 1 and at the ior\n\n",
         size, size, kPixelStrata * size, kPixelStrata * size, kPixelStrata, kPixelStrata, spp, frameSize, frameSize,
         frames, size, size, repeats);
     out.tableHeader(
@@ -248,9 +248,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
             const NoisyReferenceError lblError = luminanceRelativeRmse(lbl, pathA, pathB);
             out.print(
                 "| %s | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.1f | %.1f | %.2f | %.2f | %.2f | "
-                "%.2f | "
-                "%.1f "
-                "| %.1f |\n",
+                "%.2f | %.1f | %.1f |\n",
                 model.c_str(), ior, lblError.noise, luminanceRelativeRmse(ss, single),
                 ssAgainstSingleOverPixels(scene, samples, settings), luminanceRelativeRmse(ss, pathA, pathB).debiased,
                 lblError.debiased, luminanceRelativeRmse(mdom, pathA, pathB).debiased,

@@ -19,25 +19,23 @@ namespace lucent {
 
 namespace detail {
 
-// An ss renderer of the scene's first object, lit as ss lights it, and its view at frameSize.
+// An ss renderer of the scene's first object, lit as ss lights it, its view at
+// frameSize and its draw options (no surface term).
 struct SsFrameScene {
     ScatteringRenderer renderer;
     ViewSetup view;
+    DrawOptions options;
     SsFrameScene(const LoadedScene& loaded, int frameSize, const SsOptions& ss) {
         renderer.addObject(translucentObjectFor(loaded.objects[0], loaded.samples[0]));
         setSsLights(renderer, loaded, ss);
         Camera camera = loaded.desc.camera;
         camera.width = camera.height = frameSize;
         view = viewSetupFor(camera, loaded.bounds());
+        options.surface = false;
+        options.tracedLight = ss.tracedLight;
     }
+    void draw() { renderer.draw(view, options); }
 };
-
-inline DrawOptions ssFrameOptions(const SsOptions& ss) {
-    DrawOptions options;
-    options.surface = false;
-    options.tracedLight = ss.tracedLight;
-    return options;
-}
 
 }  // namespace detail
 
@@ -45,9 +43,8 @@ inline double ssFrameMs(const LoadedScene& loaded, int frameSize, int frames, co
     const auto context = OffscreenContext::create(GlBackend::Auto);
     OffscreenFrame frame(frameSize, frameSize);
     detail::SsFrameScene scene(loaded, frameSize, ss);
-    const DrawOptions options = detail::ssFrameOptions(ss);
     return 1e3 * medianFrameSeconds(
-                     3, frames, [&] { frame.bindAndClear(); }, [&] { scene.renderer.draw(scene.view, options); });
+                     3, frames, [&] { frame.bindAndClear(); }, [&] { scene.draw(); });
 }
 
 // The frames of two scenes drawn in turn, a frame of one then a frame of the
@@ -58,14 +55,13 @@ inline std::pair<double, double> ssFrameMsInTurn(const LoadedScene& a, const Loa
     const auto context = OffscreenContext::create(GlBackend::Auto);
     OffscreenFrame frame(frameSize, frameSize);
     detail::SsFrameScene first(a, frameSize, ss), second(b, frameSize, ss);
-    const DrawOptions options = detail::ssFrameOptions(ss);
     std::vector<double> times[2];
     constexpr int kWarmup = 3;
     for (int f = 0; f < kWarmup + frames; ++f)
         for (int k = 0; k < 2; ++k) {
             detail::SsFrameScene& scene = k == 0 ? first : second;
             frame.bindAndClear();
-            const double seconds = timeGlWork([&] { scene.renderer.draw(scene.view, options); });
+            const double seconds = timeGlWork([&] { scene.draw(); });
             if (f >= kWarmup) times[k].push_back(seconds);
         }
     return {1e3 * median(times[0]), 1e3 * median(times[1])};
