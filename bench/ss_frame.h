@@ -19,6 +19,9 @@ namespace lucent {
 
 namespace detail {
 
+// Untimed frames before the timed ones: the first draws trace the light and the view.
+inline constexpr int kWarmupFrames = 3;
+
 // An ss renderer of the scene's first object, lit as ss lights it, its view at
 // frameSize and its draw options (no surface term).
 struct SsFrameScene {
@@ -44,7 +47,7 @@ inline double ssFrameMs(const LoadedScene& loaded, int frameSize, int frames, co
     OffscreenFrame frame(frameSize, frameSize);
     detail::SsFrameScene scene(loaded, frameSize, ss);
     return 1e3 * medianFrameSeconds(
-                     3, frames, [&] { frame.bindAndClear(); }, [&] { scene.draw(); });
+                     detail::kWarmupFrames, frames, [&] { frame.bindAndClear(); }, [&] { scene.draw(); });
 }
 
 // The frames of two scenes drawn in turn, a frame of one then a frame of the
@@ -56,13 +59,12 @@ inline std::pair<double, double> ssFrameMsInTurn(const LoadedScene& a, const Loa
     OffscreenFrame frame(frameSize, frameSize);
     detail::SsFrameScene first(a, frameSize, ss), second(b, frameSize, ss);
     std::vector<double> times[2];
-    constexpr int kWarmup = 3;
-    for (int f = 0; f < kWarmup + frames; ++f)
+    for (int f = 0; f < detail::kWarmupFrames + frames; ++f)
         for (int k = 0; k < 2; ++k) {
             detail::SsFrameScene& scene = k == 0 ? first : second;
             frame.bindAndClear();
             const double seconds = timeGlWork([&] { scene.draw(); });
-            if (f >= kWarmup) times[k].push_back(seconds);
+            if (f >= detail::kWarmupFrames) times[k].push_back(seconds);
         }
     return {1e3 * median(times[0]), 1e3 * median(times[1])};
 }
