@@ -46,6 +46,7 @@ struct BoundaryHit {
     Vec3 point;
     Vec3 normal;    // the unit shading normal, turned to the outside
     bool entering;  // the ray goes from outside to inside (by the face's own normal)
+    uint32_t face;  // the mesh triangle it meets
 };
 
 // The first boundary crossing of object o at t > a small offset along origin + t dir.

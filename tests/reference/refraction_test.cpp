@@ -12,7 +12,9 @@
 // - the single scattering of a half-space under a beam, seen from outside: a
 //   closed form with Snell's angles, both Fresnel transmissions and the n^2 law
 //   of radiance;
-// - the hemispherical reflectance to diffuse light, in Walsh's closed form.
+// - the hemispherical reflectance to diffuse light, in Walsh's closed form;
+// - light reaching points inside a torus through its concave boundary: by the
+//   mesh's first crossing towards the light, with Snell's law there in sines.
 #include "core/refraction.h"
 
 #include <gtest/gtest.h>
@@ -198,6 +200,55 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
     std::printf("taken in %.5f, removed %.5f (%+.2f%%)\n", takenIn, removed, 100.0 * (removed / takenIn - 1.0));
     // Tolerance: the 20480-face sphere and the midpoint rules, 1%.
     EXPECT_NEAR(removed, takenIn, 0.01 * takenIn);
+}
+
+// Through a concave boundary (a torus, whose far side of the ring the light
+// reaches past, or through, the hole): every solved arrival leaves x by the
+// mesh's first crossing along toLight, and there it obeys Snell's law about the
+// shading normal, in sines and in the plane of incidence, with the ray out
+// heading for the light. Each checked here by its own ray cast and sines, not
+// by the solve's own steps: the solve takes its Newton steps on the face its
+// current ray leaves by, and must still end on the crossing nearest x.
+TEST(Refraction, LightThroughAConcaveBoundaryLeavesByTheFirstCrossingTowardTheLight) {
+    constexpr double n = 1.5;
+    SceneDesc scene;
+    ObjectDesc o = test::simpleObject(test::modelsDir() / "torus.obj", 4.0, 0.5);
+    o.medium.ior = n;
+    scene.objects = {o};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const VolumeObject& torus = objects.front();
+    const double diagonal = torus.boundary().bounds().diagonal();
+    // Above the ring, level with it (grazing it), in the hole, and far to the side.
+    for (const Vec3& position : {Vec3(0.2, 0.9, 0.8), Vec3(0.0, 0.15, 2.0), Vec3(1.5, 0.05, 0.3), Vec3(0.3, 0.3, 0.3),
+                                 Vec3(-2.0, 0.4, -1.0)}) {
+        const Light light = test::pointLight(position, Rgb(1.0));
+        int inside = 0, solved = 0;
+        for (int i = 0; i < 40; ++i)
+            for (int j = 0; j < 40; ++j)
+                for (double y : {-0.1, 0.0, 0.1}) {
+                    const Vec3 x(-0.68 + 1.36 * (i + 0.5) / 40, y, -0.68 + 1.36 * (j + 0.5) / 40);
+                    if (!torus.contains(x)) continue;
+                    ++inside;
+                    const std::optional<RefractedArrival> a = lightThroughBoundary(torus, light, x);
+                    if (!a) continue;
+                    ++solved;
+                    const std::optional<BoundaryHit> first = nextBoundaryHit(torus, x, a->toLight);
+                    ASSERT_TRUE(first.has_value());
+                    EXPECT_NEAR(glm::length(first->point - a->entry), 0.0, 1e-6 * diagonal);
+                    EXPECT_NEAR(first->t, a->inside, 1e-6 * diagonal);
+                    const Vec3 normal = first->normal;  // outward
+                    EXPECT_NEAR(n * glm::length(glm::cross(a->toLight, normal)),
+                                glm::length(glm::cross(a->outward, normal)), 1e-6);
+                    EXPECT_NEAR(glm::dot(glm::cross(a->toLight, normal), a->outward), 0.0, 1e-6);
+                    EXPECT_GT(glm::dot(a->outward, normal), 0.0);
+                    EXPECT_NEAR(glm::length(a->outward - glm::normalize(light.position - a->entry)), 0.0, 1e-6);
+                }
+        std::printf("light at (%.2f, %.2f, %.2f): %d points inside, %d reached by one refraction\n", position.x,
+                    position.y, position.z, inside, solved);
+        EXPECT_GT(inside, 1000);
+        EXPECT_GT(solved, 0);
+    }
 }
 
 // A half-space of index 1.5 (a box 80 wide and 20 deep) lit by a beam at 30
