@@ -143,6 +143,11 @@ std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& or
 
 namespace {
 
+// The unit direction from y towards the light.
+Vec3 towardLight(const Light& light, const Vec3& y) {
+    return light.type == Light::Type::Point ? glm::normalize(light.position - y) : -light.direction;
+}
+
 // The Newton solve of lightThroughBoundary for x: the unknown is the direction
 // at x, as two coordinates p about the straight line to the light, and the
 // residual how far the ray along it, refracted out, misses the light.
@@ -153,17 +158,14 @@ struct ExitSolve {
     std::array<Vec3, 2> frame;
 
     ExitSolve(const VolumeObject& object, const Light& l, const Vec3& at)
-        : o(object), light(l), x(at), straight(towardLight(at)), frame(tangentFrame(straight)) {}
-    Vec3 towardLight(const Vec3& y) const {
-        return light.type == Light::Type::Point ? glm::normalize(light.position - y) : -light.direction;
-    }
+        : o(object), light(l), x(at), straight(towardLight(l, at)), frame(tangentFrame(straight)) {}
     Vec3 direction(const Vec2& p) const { return glm::normalize(straight + p.x * frame[0] + p.y * frame[1]); }
     // nearFace: try that face first (hitOnFace).
     std::optional<Vec2> residual(const Vec2& p, Exit* exit, uint32_t nearFace) const {
         const std::optional<Exit> e = refractOut(o, x, direction(p), nearFace);
         if (!e) return std::nullopt;
         if (exit) *exit = *e;
-        const Vec3 miss = e->direction - towardLight(e->point);
+        const Vec3 miss = e->direction - towardLight(light, e->point);
         return Vec2(glm::dot(miss, frame[0]), glm::dot(miss, frame[1]));
     }
     // Damped Newton from p. local: the difference quotients and the steps try
@@ -234,8 +236,7 @@ std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, cons
     const double diagonal = o.boundary().bounds().diagonal();
     const std::optional<Exit> solved = exitTowardLight(o, light, x);
     if (!solved) return std::nullopt;
-    const Vec3 y = solved->point;
-    const Vec3 toLight = point ? glm::normalize(light.position - y) : -light.direction;
+    const Vec3 y = solved->point, toLight = towardLight(light, y);
     const double distance = point ? glm::length(light.position - y) : kInfinity;
     // The light's way out there must not cross the object again.
     if (o.boundary().firstHit(y + kOffset * diagonal * toLight, toLight) < distance) return std::nullopt;
