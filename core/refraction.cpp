@@ -35,7 +35,6 @@ BoundaryHit hitAt(const VolumeObject& o, uint32_t f, double t, const Vec3& origi
 // breadth beside one whose first crossing is f (the Newton solve's difference
 // quotients and the bundle's side rays below): that crossing stays f unless
 // the ray slips over the triangle's edge, and then the whole mesh is asked.
-// It saves two of the four traversals of a Newton step.
 std::optional<BoundaryHit> hitOnFace(const VolumeObject& o, uint32_t f, const Vec3& origin, const Vec3& dir) {
     const auto& tri = o.mesh().triangles[f];
     const Vec3& a = o.mesh().positions[tri[0]];
@@ -66,12 +65,12 @@ std::optional<BoundaryHit> nextBoundaryHitNear(const VolumeObject& o, const Vec3
 
 // The outgoing direction of a ray leaving x inside o along w, refracted out at
 // the boundary, and where it left; none under total internal reflection.
-// nearFace: a ray a hair's breadth beside this one left through it (hitOnFace).
 struct Exit {
     Vec3 point, direction;
     double inside, cosine;  // distance from x; cosine to the normal inside
     uint32_t face;
 };
+// nearFace: a ray a hair's breadth beside this one left through it (hitOnFace).
 std::optional<Exit> refractOut(const VolumeObject& o, const Vec3& x, const Vec3& w, uint32_t nearFace = kAnyFace) {
     const std::optional<BoundaryHit> hit = nextBoundaryHitNear(o, x, w, nearFace);
     if (!hit || hit->entering) return std::nullopt;
