@@ -7,7 +7,7 @@
 //                                          [--g 0.8] [--repeats N] [--moments 16]
 //   build/bin/lucent-bench-hybrid accuracy [--grids 64,128] [--albedos 0.5,0.8,0.95] [--g G] [--spp N] [--size N]
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
-//                                          [--models sphere,bunny] [--light X,Y,Z]
+//                                          [--models sphere,bunny] [--light X,Y,Z] [--ior 1]
 //   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N] [--frame-size N]
 //   build/bin/lucent-bench-hybrid pool     [--grids 128,256] [--pools 0,25,5] [--directions 24] [--moments 9,16]
 //                                          [--iterations 2] [--repeats N]
@@ -20,7 +20,8 @@
 // accuracy: relative RMSE of luminance of ss and of lbl or mdom against --method
 // path on the sphere and the bunny (no surface term), for every grid and albedo
 // (and, for mdom, every direction count); the path tracer renders twice, and its
-// own noise, measured from the two, is taken out of the errors.
+// own noise, measured from the two, is taken out of the errors; --ior sets
+// every object's index of refraction.
 // refraction: on the sphere (sigma_t 2, albedo 0.75) and the wax bunny (sigma_t
 // 8, albedo 0.95, one point light) at each ior: ss against the refracting
 // single-scattering reference (at pixel centres, and over pixel means), and
@@ -108,11 +109,11 @@ void speed(ResultsRecord& out, const std::vector<int>& grids, const std::vector<
 
 void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vector<double>& albedos, int spp, int size,
               double g, const std::string& method, const std::vector<int>& directions, const std::vector<int>& moments,
-              const std::vector<std::string>& models, const std::vector<double>& light) {
+              const std::vector<std::string>& models, const std::vector<double>& light, double ior) {
     out.print(
         "relative RMSE of luminance against --method path at %d paths per pixel (its own noise taken out), "
-        "%dx%d, no surface term\n\n",
-        spp, size, size);
+        "%dx%d, no surface term%s\n\n",
+        spp, size, size, ior == 1.0 ? "" : (", every object at ior " + std::to_string(ior).substr(0, 4)).c_str());
     out.tableHeader({"model", "albedo", "g", "grid", "directions", "moments", "path noise", "ss", method,
                      method + " raw", method + " mean ratio", method + " (s)", "path (s)"},
                     {false, true, true, true, true, true, true, true, true, true, true, true, true});
@@ -120,6 +121,7 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
         for (double albedo : albedos) {
             SceneDesc scene = sceneOf(model.c_str(), albedo, g);
             if (light.size() == 3) scene.lights[0].position = Vec3(light[0], light[1], light[2]);
+            for (ObjectDesc& o : scene.objects) o.medium.ior = ior;
             scene.camera.width = scene.camera.height = size;
             LoadedScene loaded = loadScene(scene, false);
             attachSamples(loaded, {preprocessObject(loaded.objects[0], qualityPreset("default"))});
@@ -414,6 +416,8 @@ int main(int argc, char** argv) {
     ac->add_option("--spp", spp, "Paths per pixel of the ground truth")->check(CLI::Range(1, 1 << 20));
     ac->add_option("--size", size, "Image width and height")->check(CLI::Range(8, 2048));
     ac->add_option("--g", g, "Henyey-Greenstein g of the media")->check(CLI::Range(-0.99, 0.99));
+    double ior = 1.0;
+    ac->add_option("--ior", ior, "Index of refraction of the media")->check(CLI::Range(1.0, 4.0));
     int iterations = 3;
     double mdomAlbedo = 0.9, mdomG = 0.8;
     std::vector<int> mdomGrids{64, 128}, mdomDirections{24, 48};
@@ -466,7 +470,7 @@ int main(int argc, char** argv) {
             speed(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.9, 0.99} : albedos, ks, repeats, subSteps);
         else
             accuracy(out, grids, albedos.empty() ? std::vector<double>{0.5, 0.8, 0.95} : albedos, spp, size, g, method,
-                     directions, moments, models, light);
+                     directions, moments, models, light, ior);
         if (!recordFile.empty()) out.write(recordFile);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "lucent-bench-hybrid: error: %s\n", e.what());
