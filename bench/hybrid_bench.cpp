@@ -9,6 +9,7 @@
 //                                          [--method lbl|mdom] [--directions 24,48,120] [--moments 16]
 //                                          [--models sphere,bunny] [--light X,Y,Z] [--ior 1]
 //   build/bin/lucent-bench-hybrid refraction [--iors 1.33,1.5] [--spp N] [--size N] [--repeats N] [--frame-size N]
+//                                            [--models sphere,bunny,bunny-back]
 //   build/bin/lucent-bench-hybrid pool     [--grids 128,256] [--pools 0,25,5] [--directions 24] [--moments 9,16]
 //                                          [--iterations 2] [--repeats N]
 //   every subcommand also takes [--record docs/results/hybrid-SUBCOMMAND.md]
@@ -23,7 +24,7 @@
 // own noise, measured from the two, is taken out of the errors; --ior sets
 // every object's index of refraction.
 // refraction: on the sphere (sigma_t 2, albedo 0.75) and the wax bunny (sigma_t
-// 8, albedo 0.95, one point light) at each ior: ss against the refracting
+// 8, albedo 0.95, one point light in front; bunny-back: behind) at each ior: ss against the refracting
 // single-scattering reference (at pixel centres, and over pixel means), and
 // ss, lbl and mdom against the path tracer (its noise taken out); and ss's
 // frame drawn again with its light and view cached (in turn with the
@@ -153,12 +154,15 @@ void accuracy(ResultsRecord& out, const std::vector<int>& grids, const std::vect
         }
 }
 
-// The scenes of issue 41: the bundled sphere, and the bunny as wax.
+// The scenes of issue 41: the bundled sphere, and the bunny as wax, lit by the
+// bundled bunny's first light (front, above) or by its second alone
+// (bunny-back: behind, at the side), where the light that reaches the eye
+// has crossed the object.
 SceneDesc refractionScene(const std::string& model, double ior) {
-    SceneDesc s = sceneOf(model, model == "sphere" ? 0.75 : 0.95);
-    if (model == "bunny") {
+    SceneDesc s = sceneOf(model == "sphere" ? "sphere" : "bunny", model == "sphere" ? 0.75 : 0.95);
+    if (model != "sphere") {
         s.objects[0].medium.sigmaT = Rgb(8.0);
-        s.lights.resize(1);
+        s.lights.erase(s.lights.begin() + (model == "bunny-back" ? 0 : 1));
     }
     s.objects[0].medium.ior = ior;
     return s;
@@ -206,7 +210,8 @@ double medianRenderSeconds(const LoadedScene& loaded, const MethodSettings& sett
     return median(times);
 }
 
-void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, int size, int repeats, int frameSize) {
+void refraction(ResultsRecord& out, const std::vector<std::string>& models, const std::vector<double>& iors, int spp,
+                int size, int repeats, int frameSize) {
     const int frames = 20;
     out.print(
         "relative RMSE of luminance, %dx%d, no surface term: ss against --method reference (single scattering, "
@@ -222,7 +227,7 @@ void refraction(ResultsRecord& out, const std::vector<double>& iors, int spp, in
          "lbl mean ratio", "ss frame at ior 1 (ms)", "ss frame (ms)", "frame ratio", "ss render at ior 1 (s)",
          "ss render (s)", "render ratio", "reference (s)", "path (s)"},
         {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true});
-    for (const std::string model : {"sphere", "bunny"}) {
+    for (const std::string& model : models) {
         SceneDesc matched = refractionScene(model, 1.0);
         matched.camera.width = matched.camera.height = size;
         LoadedScene indexMatched = loadScene(matched, false);
@@ -453,6 +458,11 @@ int main(int argc, char** argv) {
     rf->add_option("--frame-size", refractionFrame, "Width and height of the timed ss frames")
         ->check(CLI::Range(8, 2048));
     rf->add_option("--repeats", refractionRepeats, "ss renders timed per row")->check(CLI::Range(1, 100));
+    std::vector<std::string> refractionModels{"sphere", "bunny"};
+    rf->add_option("--models", refractionModels,
+                   "sphere, bunny (wax, lit from the front), bunny-back (lit from behind)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"sphere", "bunny", "bunny-back"}));
     std::string recordFile;
     for (CLI::App* sub : {sp, ac, md, rf, pl})
         sub->add_option("--record", recordFile, "Also write the results to this Markdown file (docs/results/)");
@@ -463,7 +473,7 @@ int main(int argc, char** argv) {
         if (pl->parsed())
             mdomPool(out, poolGrids, pools, poolDirections, poolMoments, poolIterations, poolRepeats);
         else if (rf->parsed())
-            refraction(out, iors, refractionSpp, refractionSize, refractionRepeats, refractionFrame);
+            refraction(out, refractionModels, iors, refractionSpp, refractionSize, refractionRepeats, refractionFrame);
         else if (md->parsed())
             mdomSpeed(out, mdomGrids, mdomDirections, iterations, mdomAlbedo, mdomG, repeats, mdomMoments);
         else if (sp->parsed())
