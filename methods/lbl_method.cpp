@@ -16,7 +16,8 @@ std::vector<std::string> LblMethod::limitations(const LoadedScene& scene, const 
                           "': ior differs from 1: single scattering refracts (as --method ss), and the multiple "
                           "scattering enters, reflects inside and leaves by Fresnel through a smoothed boundary: "
                           "4-6% from --method path on the sphere and 12-14% on the wax bunny at ior 1.33-1.5, "
-                          "beyond the 10% goal where ss misses its own (docs/results/refraction.md)");
+                          "22% lit from behind, beyond the 10% goal where ss misses its own "
+                          "(docs/results/refraction.md, refraction-back.md)");
         if (std::abs(m.g) > 0.5)
             out.push_back("object '" + o.desc().name +
                           "': |g| > 0.5: the lattice scatters isotropically on reduced coefficients (similarity) "

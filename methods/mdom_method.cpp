@@ -38,8 +38,8 @@ std::vector<std::string> MdomMethod::limitations(const LoadedScene& scene, const
                 "object '" + o.desc().name +
                 "': ior differs from 1: single scattering refracts (as --method ss), and the multiple scattering's "
                 "light enters through the boundary and reflects inside by Fresnel on the voxels' faces: 4-6% from "
-                "--method path on the sphere and 11-13% on the wax bunny at ior 1.33-1.5, beyond the 10% goal "
-                "where ss misses its own (docs/results/refraction.md)");
+                "--method path on the sphere and 11-13% on the wax bunny at ior 1.33-1.5, 20% lit from behind, "
+                "beyond the 10% goal where ss misses its own (docs/results/refraction.md, refraction-back.md)");
         if (std::abs(m.g) > kMdomMaxG)
             out.push_back(
                 "object '" + o.desc().name + "': |g| > " + std::to_string(kMdomMaxG).substr(0, 3) +

@@ -87,16 +87,17 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // the albedo; below kSingleScatteringAlbedo it stays within the goal.
     // Only the path tracer gives full transport through a boundary whose ior is
     // not 1 within the goal on every bundled scene: lbl and mdom refract and
-    // reflect at the boundary (4-6% on the sphere) but miss it on the wax bunny,
-    // where ss's single scattering misses its own (docs/accuracy.md).
+    // reflect at the boundary (3-6% on the sphere up to albedo 0.8) but miss it
+    // on the bunny at every albedo, where ss's single scattering misses its own
+    // (docs/accuracy.md, What auto picks).
     for (const ObjectDesc& o : scene.objects)
         if (o.medium.ior != 1.0)
             return {"path",
                     "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
                         ": only the path tracer gives full transport through a refracting boundary within 10% on "
-                        "every measured scene (lbl and mdom are 4-6% from it on the sphere but 11-14% on the wax "
-                        "bunny, where ss is 13-15% from single scattering: docs/results/refraction.md); it is slow: "
-                        "lower --samples or set --noise for a draft"};
+                        "every measured scene (lbl is 3-5% from it on the sphere up to albedo 0.8, but 13-15% on "
+                        "the bunny at every albedo from 0.1 to 0.95, where ss's own view of the bunny misses: "
+                        "docs/results/lbl-refraction.md); it is slow: lower --samples or set --noise for a draft"};
     double albedo = 0.0;
     for (const ObjectDesc& o : scene.objects)
         albedo = std::max({albedo, o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});

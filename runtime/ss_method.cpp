@@ -139,8 +139,10 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
             object +
             ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
             "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
-            "from the refracting reference on the sphere, 12-13% on the wax bunny at ior 1.33-1.5 (10-12% over "
-            "pixel means: caustics finer than a pixel)");
+            "from the refracting reference on the sphere, 12-13% on the wax bunny lit from the front at ior "
+            "1.33-1.5 (10-12% over pixel means: caustics finer than a pixel), and 25-29% lit from behind, too dark: "
+            "the light scatters deep inside, where the refracted rays of pixels far from where a sample is drawn "
+            "pass through it too (docs/results/refraction-back.md)");
         // The refracted view starts where the camera's ray enters the object.
         if (o.contains(scene.desc.camera.position))
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
