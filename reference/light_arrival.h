@@ -2,6 +2,7 @@
 // Light reaching a point of the media, as both ground truths gather it: the
 // direction to the light, its irradiance there (1/d^2 for point lights), and
 // the transmittance along the way through every object (zero through a blocker).
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -35,5 +36,18 @@ Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x
 // x: the light a collision at x scatters along dir, as both ground truths gather it.
 Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
                           const std::vector<Light>& lights, const Vec3& x, const Vec3& dir);
+
+// The same, estimated without bias by the path tracer at a collision: each
+// light's solve runs with the odds boundarySolveOdds gives and what it finds
+// is divided by them. uniform draws in [0, 1).
+Rgb lightsThroughBoundaryByRoulette(const VolumeObject& o, const std::vector<VolumeObject>& objects,
+                                    const std::vector<Light>& lights, const Vec3& x, const Vec3& dir,
+                                    const std::function<double()>& uniform);
+// The odds of solving for the light through o's boundary at x, in
+// [kLeastSolveOdds, 1]: 1 where the straight line to the light keeps at least
+// kSureSolveTransmittance of it inside o, in proportion below.
+double boundarySolveOdds(const VolumeObject& o, const Light& light, const Vec3& x);
+inline constexpr double kSureSolveTransmittance = 0.3;
+inline constexpr double kLeastSolveOdds = 0.3;
 
 }  // namespace lucent

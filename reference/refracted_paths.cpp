@@ -63,7 +63,7 @@ Rgb PathTracer::gatherLightsRefracted(const VolumeObject& object, const Vec3& x,
                                       PathSampler& rng) const {
     // In an index-matched object, the lights only: the environment is met by escaping paths.
     if (object.desc().medium.ior == 1.0) return gatherSceneLights(object, x, dir, rng);
-    Rgb sum = lightsThroughBoundary(object, objects_, scene_.lights, x, dir);
+    Rgb sum = lightsThroughBoundaryByRoulette(object, objects_, scene_.lights, x, dir, [&] { return rng.uniform(); });
     if (!environment_) return sum;
     // The environment through the boundary: one direction outside drawn from the
     // map, taken as a directional light of radiance over density (its estimate

@@ -14,7 +14,9 @@
 //   of radiance;
 // - the hemispherical reflectance to diffuse light, in Walsh's closed form;
 // - light reaching points inside a torus through its concave boundary: by the
-//   mesh's first crossing towards the light, with Snell's law there in sines.
+//   mesh's first crossing towards the light, with Snell's law there in sines;
+// - the path tracer's roulette on that solve: its mean over many draws is the
+//   solve's light, and its odds follow the straight line's transmittance.
 #include "core/refraction.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +25,8 @@
 #include <cstdio>
 
 #include "core/loaded_scene.h"
+#include "core/rng.h"
+#include "reference/light_arrival.h"
 #include "reference/path_tracer.h"
 #include "reference/reference_renderer.h"
 #include "tests/reference/spot_radiance.h"
@@ -200,6 +204,54 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
     std::printf("taken in %.5f, removed %.5f (%+.2f%%)\n", takenIn, removed, 100.0 * (removed / takenIn - 1.0));
     // Tolerance: the 20480-face sphere and the midpoint rules, 1%.
     EXPECT_NEAR(removed, takenIn, 0.01 * takenIn);
+}
+
+// The path tracer skips the solve for the light through the boundary with
+// odds below 1 deep inside, and weighs what it finds by their inverse: on a
+// unit sphere (n 1.5, sigma_t 8) under a point light on its axis, the mean of
+// many draws at each point is the light found without roulette (within four
+// standard errors of the draws' binomial spread), and the odds are the
+// straight line's transmittance over kSureSolveTransmittance.
+TEST(Refraction, RouletteOnTheSolveThroughTheBoundaryKeepsItsMean) {
+    SceneDesc scene;
+    ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.5);
+    o.medium.ior = 1.5;
+    scene.objects = {o};
+    std::vector<std::string> warnings;
+    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const VolumeObject& sphere = objects.front();
+    const std::vector<Light> lights{test::pointLight(Vec3(0.0, 0.0, 4.0), Rgb(1.0))};
+    const Vec3 dir = glm::normalize(Vec3(0.3, -0.2, 1.0));
+    // On the axis, 0.2 below the lit pole the straight line keeps e^-1.6 of the light.
+    EXPECT_NEAR(boundarySolveOdds(sphere, lights[0], Vec3(0.0, 0.0, 0.8)), std::exp(-1.6) / kSureSolveTransmittance,
+                0.01);
+    EXPECT_EQ(boundarySolveOdds(sphere, lights[0], Vec3(0.0, 0.0, 0.95)), 1.0);
+    Rng rng(7, 0);
+    const int draws = 20000;
+    for (const Vec3& x : {Vec3(0.0, 0.0, 0.95), Vec3(0.0, 0.0, 0.8), Vec3(0.3, 0.1, 0.0), Vec3(-0.2, 0.4, -0.6)}) {
+        const double exact = lightsThroughBoundary(sphere, objects, lights, x, dir).r;
+        ASSERT_GT(exact, 0.0);
+        const double odds = boundarySolveOdds(sphere, lights[0], x);
+        double sum = 0.0;
+        int skipped = 0;
+        for (int k = 0; k < draws; ++k) {
+            const double found =
+                lightsThroughBoundaryByRoulette(sphere, objects, lights, x, dir, [&] { return rng.uniform(); }).r;
+            sum += found;
+            skipped += found == 0.0;
+        }
+        const double mean = sum / draws, standardError = exact * std::sqrt((1.0 - odds) / (odds * draws));
+        std::printf("x (%.2f, %.2f, %.2f): odds %.3f, skipped %d of %d, mean %.6g against %.6g\n", x.x, x.y, x.z, odds,
+                    skipped, draws, mean, exact);
+        if (odds == 1.0) {
+            EXPECT_EQ(skipped, 0);
+            EXPECT_NEAR(mean, exact, 1e-12 * exact);
+        } else {
+            EXPECT_GT(skipped, 0);
+            EXPECT_NEAR(mean, exact, 4.0 * standardError);
+        }
+    }
+    EXPECT_EQ(boundarySolveOdds(sphere, lights[0], Vec3(0.3, 0.1, 0.0)), kLeastSolveOdds);
 }
 
 // Through a concave boundary (a torus, whose far side of the ring the light
