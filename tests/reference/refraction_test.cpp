@@ -163,14 +163,19 @@ TEST(Refraction, ConservativeSlabLosesNoParticle) {
     EXPECT_GT(tally.transmitted + tally.reflected, 0.999);
 }
 
-TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
-    // Unit sphere of index 1.5, sigma_t 8, a point light of intensity 1 at distance 4.
+// The unit sphere of index 1.5 and sigma_t 8.
+std::vector<VolumeObject> refractingSphere(double albedo) {
     SceneDesc scene;
-    ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.0);
+    ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, albedo);
     o.medium.ior = 1.5;
     scene.objects = {o};
     std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    return loadObjects(scene, warnings);
+}
+
+TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
+    // Unit sphere of index 1.5, sigma_t 8, a point light of intensity 1 at distance 4.
+    const std::vector<VolumeObject> objects = refractingSphere(0.0);
     const VolumeObject& sphere = objects.front();
     const Light light = test::pointLight(Vec3(0.0, 0.0, 4.0), Rgb(1.0));
     // Taken in: the cone of directions from the light that meet the sphere, each
@@ -213,12 +218,7 @@ TEST(Refraction, SphereRemovesThePowerItsBoundaryTransmits) {
 // standard errors of the draws' binomial spread), and the odds are the
 // straight line's transmittance over kSureSolveTransmittance.
 TEST(Refraction, RouletteOnTheSolveThroughTheBoundaryKeepsItsMean) {
-    SceneDesc scene;
-    ObjectDesc o = test::simpleObject(test::modelsDir() / "sphere.obj", 8.0, 0.5);
-    o.medium.ior = 1.5;
-    scene.objects = {o};
-    std::vector<std::string> warnings;
-    const std::vector<VolumeObject> objects = loadObjects(scene, warnings);
+    const std::vector<VolumeObject> objects = refractingSphere(0.5);
     const VolumeObject& sphere = objects.front();
     const std::vector<Light> lights{test::pointLight(Vec3(0.0, 0.0, 4.0), Rgb(1.0))};
     const Vec3 dir = glm::normalize(Vec3(0.3, -0.2, 1.0));
