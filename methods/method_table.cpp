@@ -95,7 +95,7 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
             return {"path",
                     "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
                         ": only the path tracer gives full transport through a refracting boundary within 10% on "
-                        "every measured scene (lbl is 3-5% from it on the sphere up to albedo 0.8, but 13-15% on "
+                        "every measured scene (lbl is 3-5% from it on the sphere up to albedo 0.8, but 13-16% on "
                         "the bunny at every albedo from 0.1 to 0.95, where ss's own view of the bunny misses: "
                         "docs/results/lbl-refraction.md); it is slow: lower --samples or set --noise for a draft"};
     double albedo = 0.0;
