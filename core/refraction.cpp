@@ -140,12 +140,11 @@ std::optional<BoundaryHit> nextBoundaryHit(const VolumeObject& o, const Vec3& or
     return std::nullopt;
 }
 
-namespace {
-
-// The unit direction from y towards the light.
 Vec3 towardLight(const Light& light, const Vec3& y) {
     return light.type == Light::Type::Point ? glm::normalize(light.position - y) : -light.direction;
 }
+
+namespace {
 
 // The Newton solve of lightThroughBoundary for x: the unknown is the direction
 // at x, as two coordinates p about the straight line to the light, and the

@@ -90,6 +90,8 @@ struct RefractedArrival {
 // then that light does not reach x directly. Of several such rays (caustics
 // behind strongly curved parts) the solve finds the one nearest the straight line.
 std::optional<RefractedArrival> lightThroughBoundary(const VolumeObject& o, const Light& light, const Vec3& x);
+// The unit direction from y towards the light (its centre, for a point light).
+Vec3 towardLight(const Light& light, const Vec3& y);
 
 namespace detail {
 

@@ -39,20 +39,27 @@ Rgb transmittanceToLight(const std::vector<VolumeObject>& objects, const Vec3& x
     return transmitted;
 }
 
+namespace {
+
+// One light's term of lightsThroughBoundary.
+Rgb lightThroughBoundaryScattered(const VolumeObject& o, const std::vector<VolumeObject>& objects, const Light& light,
+                                  const Vec3& x, const Vec3& dir) {
+    const std::optional<RefractedArrival> a = lightThroughBoundary(o, light, x);
+    if (!a) return Rgb(0.0);
+    Rgb outside(1.0);
+    for (const VolumeObject& other : objects)
+        if (&other != &o)
+            outside *= transmittance(other.desc().medium.sigmaT, other.densityPath(a->entry, a->outward, a->outside));
+    return henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance * outside *
+           transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
+}
+
+}  // namespace
+
 Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>& objects,
                           const std::vector<Light>& lights, const Vec3& x, const Vec3& dir) {
     Rgb sum(0.0);
-    for (const Light& light : lights) {
-        const std::optional<RefractedArrival> a = lightThroughBoundary(o, light, x);
-        if (!a) continue;
-        Rgb outside(1.0);
-        for (const VolumeObject& other : objects)
-            if (&other != &o)
-                outside *=
-                    transmittance(other.desc().medium.sigmaT, other.densityPath(a->entry, a->outward, a->outside));
-        sum += henyeyGreenstein(glm::dot(a->toLight, dir), o.desc().medium.g) * a->irradiance * outside *
-               transmittance(o.desc().medium.sigmaT, o.densityPath(x, a->toLight, a->inside));
-    }
+    for (const Light& light : lights) sum += lightThroughBoundaryScattered(o, objects, light, x, dir);
     return sum;
 }
 
@@ -63,10 +70,9 @@ Rgb lightsThroughBoundary(const VolumeObject& o, const std::vector<VolumeObject>
 // weight of what is found (1 / 0.3) where the refracted way is much clearer
 // than the straight one.
 double boundarySolveOdds(const VolumeObject& o, const Light& light, const Vec3& x) {
-    const Vec3 toward = light.type == Light::Type::Point ? light.position - x : -light.direction;
-    if (!(glm::length(toward) > 0.0)) return 1.0;
+    if (light.type == Light::Type::Point && light.position == x) return 1.0;  // no direction to it
     const Rgb s = o.desc().medium.sigmaT;
-    const double straight = std::exp(-std::min({s.r, s.g, s.b}) * o.densityPath(x, glm::normalize(toward)));
+    const double straight = std::exp(-std::min({s.r, s.g, s.b}) * o.densityPath(x, towardLight(light, x)));
     return std::clamp(straight / kSureSolveTransmittance, kLeastSolveOdds, 1.0);
 }
 
@@ -74,12 +80,10 @@ Rgb lightsThroughBoundaryByRoulette(const VolumeObject& o, const std::vector<Vol
                                     const std::vector<Light>& lights, const Vec3& x, const Vec3& dir,
                                     const std::function<double()>& uniform) {
     Rgb sum(0.0);
-    std::vector<Light> one(1);
     for (const Light& light : lights) {
         const double odds = boundarySolveOdds(o, light, x);
         if (odds < 1.0 && uniform() >= odds) continue;
-        one[0] = light;
-        sum += lightsThroughBoundary(o, objects, one, x, dir) / odds;
+        sum += lightThroughBoundaryScattered(o, objects, light, x, dir) / odds;
     }
     return sum;
 }
