@@ -14,6 +14,7 @@
 #include "runtime/internal/render_pass.h"
 #include "runtime/internal/sample_pass.h"
 #include "runtime/internal/surface_pass.h"
+#include "runtime/internal/thick_pass.h"
 
 namespace lucent {
 
@@ -28,15 +29,15 @@ TranslucentObject translucentObjectFor(const VolumeObject& object, const SampleS
 struct ScatteringRenderer::Impl {
     std::vector<GpuObject> objects;
     GpuLights lights;
-    std::vector<Light> environment;  // setEnvironment's, after lights.lights in the block
     FrameTargets targets;
     FrameTargets scatterTargets;  // at the scattering's reduced resolution, when it is reduced
-    // In drawing order: the reflected surface, then single scattering, then multiple.
+    // In drawing order: the reflected surface, then single scattering (closed form, then samples), then multiple.
     std::vector<std::unique_ptr<RenderPass>> passes;
     GridPass* grids = nullptr;
 
     explicit Impl(double cutoff) {
         passes.push_back(std::make_unique<SurfacePass>());
+        passes.push_back(std::make_unique<ThickPass>());
         passes.push_back(std::make_unique<SamplePass>(cutoff));
         auto gridPass = std::make_unique<GridPass>();
         grids = gridPass.get();
@@ -81,6 +82,18 @@ double sampleRadiusPixels(const std::vector<GpuObject>& objects, const ViewSetup
     }
     return smallest;
 }
+
+// An optically thick object's sigma_t where its density is least, the most
+// penetrating light (as the preprocessor decided it thick): ThickPass follows
+// its view rays with it. Zero for an object with samples.
+Rgb thickExtinction(bool opticallyThick, const VolumeObject* volume) {
+    if (!opticallyThick) return Rgb(0.0);
+    if (!volume)
+        throw Error(
+            "ScatteringRenderer: an optically thick object (no samples) needs its medium: set "
+            "TranslucentObject::volume (translucentObjectFor does)");
+    return volume->desc().medium.sigmaT * volume->density().minimum();
+}
 }  // namespace
 
 ScatteringRenderer::ScatteringRenderer(double cutoff) {
@@ -110,6 +123,7 @@ void ScatteringRenderer::addObject(const TranslucentObject& object) {
         o.shadows = std::make_unique<BlockerShadows>(object.blockers);
     o.albedo = object.albedo;
     o.opticallyThick = object.samples->parameters.scheme == SampleScheme::OpticallyThick;
+    o.extinction = thickExtinction(o.opticallyThick, object.volume);
     impl_->objects.push_back(std::move(o));
     impl_->retraceAll();
 }
@@ -149,7 +163,9 @@ void ScatteringRenderer::setSamples(size_t index, const SampleSet& samples, cons
     o.refractedView = RefractedView{};  // traced for the medium it had (its ior, say)
     impl_->retraceAll();
     o.opticallyThick = samples.parameters.scheme == SampleScheme::OpticallyThick;
+    o.extinction = thickExtinction(o.opticallyThick, volume);
     o.shadowsValid = false;
+    o.entryDistancesValid = false;
 }
 
 void ScatteringRenderer::setAlbedoAndG(size_t index, const Rgb& albedo, double g) {
@@ -171,6 +187,7 @@ void ScatteringRenderer::setPlacement(size_t index, const Similarity& placement)
     if (placement == o.placement) return;
     o.placement = placement;
     o.shadowsValid = false;
+    o.entryDistancesValid = false;
     impl_->retraceAll();
 }
 
@@ -184,9 +201,9 @@ size_t ScatteringRenderer::sampleCount() const {
 }
 
 void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
-    if (lights.size() + impl_->environment.size() > kMaxLights)
+    if (lights.size() + impl_->lights.environment.size() > kMaxLights)
         throw Error("ScatteringRenderer::setLights: " + std::to_string(lights.size()) + " lights and " +
-                    std::to_string(impl_->environment.size()) + " of the environment; at most " +
+                    std::to_string(impl_->lights.environment.size()) + " of the environment; at most " +
                     std::to_string(kMaxLights) + " in all");
     impl_->lights.lights = lights;
     impl_->uploadLights();
@@ -194,6 +211,7 @@ void ScatteringRenderer::setLights(const std::vector<Light>& lights) {
         o.samples->receivedValid = false;
         o.samples->tracedValid = false;
         o.shadowsValid = false;
+        o.entryDistancesValid = false;
     }
 }
 
@@ -205,11 +223,12 @@ void ScatteringRenderer::setEnvironment(const std::vector<Light>& directions) {
     for (const Light& l : directions)
         if (l.type != Light::Type::Directional)
             throw Error("ScatteringRenderer::setEnvironment: the environment's lights must be directional");
-    impl_->environment = directions;
+    impl_->lights.environment = directions;
     impl_->uploadLights();
     for (GpuObject& o : impl_->objects) {
         o.samples->environmentValid = false;
         o.samples->receivedValid = false;
+        o.entryDistancesValid = false;  // the closed form loops over the environment's directions too
     }
 }
 
@@ -217,7 +236,7 @@ void ScatteringRenderer::Impl::uploadLights() {
     static_assert(gpu::kMaxLights == kMaxLights, "lights.glsl's block holds the scene's limit");
     std::vector<gpu::Light> packed;
     packed.reserve(kMaxLights);
-    for (const std::vector<Light>* list : {&lights.lights, &environment})
+    for (const std::vector<Light>* list : {&lights.lights, &lights.environment})
         for (const Light& l : *list) {
             const bool point = l.type == Light::Type::Point;
             packed.push_back({glm::vec4(glm::vec3(point ? l.position : l.direction), point ? 1.0f : 0.0f),
@@ -228,7 +247,7 @@ void ScatteringRenderer::Impl::uploadLights() {
     packed.resize(kMaxLights);  // the uniform block's whole size, as lights.glsl declares it
     glNamedBufferStorage(lights.buffer, GLsizeiptr(packed.size() * sizeof(gpu::Light)), packed.data(), 0);
     lights.count = int(lights.lights.size());
-    lights.environmentCount = int(environment.size());
+    lights.environmentCount = int(lights.environment.size());
 }
 
 void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {
@@ -246,10 +265,14 @@ void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options)
     frame.scatterTargets = scale == 1 ? &r.targets : &r.scatterTargets;
     for (const auto& pass : r.passes) pass->prepare(frame);
     // Drawn reduced, the scattering asks of the full targets only the first
-    // interval; the grids march the whole segment at full resolution. The
-    // reduced targets' layers come from one mesh pass: no surface reads them.
+    // interval; the grids march the whole segment at full resolution, and so
+    // do the optically thick objects' rays (ThickPass). The reduced targets'
+    // layers come from one mesh pass: no surface reads them.
+    const bool anyThick =
+        std::any_of(r.objects.begin(), r.objects.end(), [](const GpuObject& o) { return o.opticallyThick; });
     r.targets.draw(frame, view,
-                   scale != 1 && r.grids->empty() ? FrameTargets::Layers::FirstInterval : FrameTargets::Layers::Peeled);
+                   scale != 1 && r.grids->empty() && !anyThick ? FrameTargets::Layers::FirstInterval
+                                                               : FrameTargets::Layers::Peeled);
     if (scale != 1 && options.scattering) r.scatterTargets.draw(frame, reduced, FrameTargets::Layers::OnePass);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(target));
     glViewport(0, 0, view.width, view.height);

@@ -31,7 +31,8 @@ struct TranslucentObject {
     Rgb albedo{0.0};       // sigma_s / sigma_t: a sample scatters its weight times this times its extinction
     Similarity placement;  // where the mesh, blockers and samples stand in the world
     // The object's medium for tracing the light to each sample (DrawOptions::tracedLight),
-    // or null: the samples' SH alone. Must outlive the renderer.
+    // or null: the samples' SH alone. Required when the samples are optically
+    // thick (no samples): the closed form needs its sigma_t. Must outlive the renderer.
     const VolumeObject* volume = nullptr;
 };
 

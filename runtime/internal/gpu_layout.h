@@ -33,6 +33,9 @@ LUCENT_GPU_CONSTANT(kUnitInsideSegments, 4)   // per pixel, the two intervals in
 LUCENT_GPU_CONSTANT(kUnitGridRefraction, 5)   // a multiple-scattering grid's index and its gradient
 LUCENT_GPU_CONSTANT(kUnitCoefficients, 6)     // float texture buffer: SH coefficients [sample][channel][coefficient]
 LUCENT_GPU_CONSTANT(kUnitRefractedRays, 7)    // per pixel, its stretches inside a refracting object
+LUCENT_GPU_CONSTANT(kUnitEntryPlanes, 8)      // an optically thick object's nearest entries (entry_distances.h),
+LUCENT_GPU_CONSTANT(kUnitEntryExits, 9)       // the exits after them
+LUCENT_GPU_CONSTANT(kUnitNextEntries, 10)     // and the entries after those
 
 // The intervals inside the objects a pixel's ray keeps apart (runtime/internal/segment.frag).
 LUCENT_GPU_CONSTANT(kMaxRaySegments, 2)

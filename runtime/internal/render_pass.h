@@ -13,6 +13,7 @@
 #include "core/scene.h"
 #include "runtime/internal/gl.h"
 #include "runtime/internal/blocker_shadows.h"
+#include "runtime/internal/entry_distances.h"
 #include "runtime/internal/gpu_mesh.h"
 #include "runtime/internal/gpu_samples.h"
 #include "runtime/internal/refracted_view.h"
@@ -42,7 +43,11 @@ struct GpuObject {
     std::unique_ptr<BlockerShadows> shadows;  // the Lucent scheme's blockers, shadowed per light
     bool shadowsValid = false;
     Rgb albedo{0.0};
-    bool opticallyThick = false;  // drawn in closed form by optically_thick.frag, no samples
+    bool opticallyThick = false;  // drawn by ThickPass (thick_pass.h), no samples
+    Rgb extinction{0.0};          // sigma_t of the medium, where the density is least (ThickPass)
+    // ThickPass's distances from each light to where its light enters the mesh.
+    std::unique_ptr<EntryDistances> entryDistances;
+    bool entryDistancesValid = false;
     RefractedView refractedView;  // the view through its boundary, when it refracts (SamplePass::refracted)
 };
 
@@ -55,6 +60,7 @@ struct GpuLights {
     int count = 0;
     int environmentCount = 0;
     std::vector<Light> lights;
+    std::vector<Light> environment;  // ScatteringRenderer::setEnvironment's, after lights in the block
     int withEnvironment() const { return count + environmentCount; }
 };
 

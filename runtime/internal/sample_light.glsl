@@ -32,17 +32,10 @@ vec3 toObject(vec3 worldDirection) { return worldDirection * modelRotation; }  /
 float attenuationExponent() { return extinctionScale * modelScale / preprocessedScale; }
 
 // Blocker shadows (runtime/internal/blocker_shadows.h), for samples whose psi leaves the
-// blockers out: per light j, layers 6j..6j+5 hold the distance along its rays to
-// the nearest blocker, with each layer's view-projection in shadowViews.
+// blockers out: the distance along each light's rays to the nearest blocker.
+#include "light_distance_maps.glsl"
 uniform bool blockerShadows;
 uniform sampler2DArray shadowDistances;
-layout(std430, binding = kBindingShadowViews) readonly buffer ShadowViews { mat4 shadowViews[]; };
-
-// How far along light j's rays x lies, as blocker_distance.frag measures it.
-float distanceAlongLight(int j, vec3 x) {
-    vec4 l = lights[j].position;
-    return l.w > 0.5 ? distance(x, l.xyz) : dot(x, l.xyz);
-}
 
 // The fraction of light j that reaches x past the blockers. A 2x2 percentage-
 // closer filter moves the shadow's edge smoothly between texels; the bias of two
@@ -50,24 +43,13 @@ float distanceAlongLight(int j, vec3 x) {
 // surface faces away from the light within one texel.
 float blockerVisibility(int j, vec3 x) {
     if (!blockerShadows) return 1.0;
-    vec4 l = lights[j].position;
-    int layer = 6 * j;
-    if (l.w > 0.5) {
-        vec3 d = x - l.xyz, a = abs(d);
-        int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-        layer += 2 * axis + (d[axis] < 0.0 ? 1 : 0);
-    }
-    mat4 m = shadowViews[layer];
-    vec4 clip = m * vec4(x, 1.0);
-    if (clip.w <= 0.0) return 1.0;
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
     ivec2 size = textureSize(shadowDistances, 0).xy;
+    int layer;
+    vec2 st;
+    float texel;
+    if (!distanceMapTexel(j, x, size, layer, st, texel)) return 1.0;
     float own = distanceAlongLight(j, x);
-    // World size of a texel: the map spans 2 / |row 0| at unit distance (point) or in all (directional).
-    float texel = 2.0 / (float(size.x) * length(vec3(m[0][0], m[1][0], m[2][0])));
-    float bias = 2.0 * texel * (l.w > 0.5 ? own : 1.0);
-    vec2 st = uv * vec2(size) - 0.5;
+    float bias = 2.0 * texel;
     ivec2 base = ivec2(floor(st));
     vec2 f = st - vec2(base);
     float lit[4];

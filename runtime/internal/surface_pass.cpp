@@ -45,29 +45,6 @@ void SurfacePass::resize(int width, int height) {
     height_ = height;
 }
 
-// For the forward programs (optically_thick.frag): the meshes' fragments, with
-// the host's depth test, adding their light.
-void SurfacePass::begin(const GlProgram& p, const FrameContext& frame) const {
-    glUseProgram(p.id());
-    glUniformMatrix4fv(p.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(frame.viewProjection));
-    glUniform1i(p.uniform("lightCount"), frame.lights.withEnvironment());
-    glUniform3fv(p.uniform("cameraPosition"), 1, glm::value_ptr(frame.view.cameraPosition));
-    glBindTextureUnit(0, frame.targets.frontDepth());
-    glUniform1i(p.uniform("frontDepth"), 0);
-    // Only the nearest front face is shaded, and llvmpipe runs a fragment to its
-    // discard: culling the back faces halves the pass (a camera inside an object
-    // sees them, so they stay there).
-    if (frame.targets.cameraInside()) {
-        glDisable(GL_CULL_FACE);
-    } else {
-        glEnable(GL_CULL_FACE);
-        glCullFace(GL_BACK);
-    }
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-}
-
 void SurfacePass::keepNearestFaces(const FrameContext& frame, size_t first, size_t end) {
     resize(frame.view.width, frame.view.height);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
@@ -153,19 +130,6 @@ void SurfacePass::draw(FrameContext& frame) {
     const bool anySurface =
         std::any_of(frame.objects.begin(), frame.objects.end(), [](const GpuObject& o) { return bool(o.surface); });
     if (frame.options.surface && anySurface) drawSurfaces(frame);
-    const bool anyThick =
-        std::any_of(frame.objects.begin(), frame.objects.end(), [](const GpuObject& o) { return o.opticallyThick; });
-    if (frame.options.scattering && anyThick) {
-        const GlProgram& p = thickProgram_.get();
-        begin(p, frame);
-        for (const GpuObject& o : frame.objects) {
-            if (!o.opticallyThick) continue;
-            glUniform3fv(p.uniform("albedo"), 1, glm::value_ptr(glm::vec3(o.albedo)));
-            glUniform1f(p.uniform("g"), float(o.g));
-            setMeshPlacement(p, o.placement);
-            o.mesh->draw();
-        }
-    }
 }
 
 }  // namespace lucent

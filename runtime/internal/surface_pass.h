@@ -1,7 +1,6 @@
 #pragma once
-// Light from the objects' nearest front faces, tested against the host's depth,
-// writing none: the reflected surface term (thesis 3.4.1), deferred, and the
-// closed-form single scattering of optically thick objects (optically_thick.frag).
+// Light reflected at the objects' nearest front faces, tested against the host's
+// depth, writing none: the surface term (thesis 3.4.1), deferred.
 #include "runtime/internal/gl_program.h"
 #include "runtime/internal/render_pass.h"
 
@@ -19,7 +18,6 @@ public:
     static constexpr int kBatch = 32;
 
 private:
-    void begin(const GlProgram& program, const FrameContext& frame) const;
     void drawSurfaces(FrameContext& frame);
     // Each pixel's nearest face of the batch's objects (surface_normals.frag), then its light (surface.frag).
     void keepNearestFaces(const FrameContext& frame, size_t first, size_t end);
@@ -29,8 +27,6 @@ private:
 
     GlProgram normalsProgram_{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "surface_normals.frag"}};
     GlProgram surfaceProgram_{{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "surface.frag"}};
-    // Linked on first use: only scenes with optically thick objects need it.
-    GlProgramVariants thickProgram_{{{GL_VERTEX_SHADER, "mesh.vert"}, {GL_FRAGMENT_SHADER, "optically_thick.frag"}}};
     // The kept faces: RGBA32F normal and slot, DEPTH_COMPONENT32F depth.
     GLuint framebuffer_ = 0, normals_ = 0, depths_ = 0;
     int width_ = 0, height_ = 0;
