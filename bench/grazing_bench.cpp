@@ -1,9 +1,10 @@
-// How far ss's closed form for optically thick objects falls from the
-// reference as the light moves from in front of the object to behind it
-// (issue 40: edges in the thick regime). The closed form lights each point
-// through its own face only (runtime/internal/optically_thick.frag): light that
-// enters a face the camera does not see and leaves near the edge beside it is
-// left out. The camera is the bundled torus-cube's; a point light circles the
+// How far ss's drawing of optically thick objects falls from the reference as
+// the light moves from in front of the object to behind it (issue 40: edges
+// in the thick regime). Each pixel's ray is marched with the light's way
+// through the medium read from maps of the mesh seen from the light
+// (runtime/internal/optically_thick.frag): light that enters a face the camera
+// does not see and leaves near the edge beside it is there, as far as the maps
+// resolve it. The camera is the bundled torus-cube's; a point light circles the
 // object at distance 4, from in front (0 degrees) over its +x side (90) to
 // behind (180). The error is the relative RMSE 2 px inside the silhouette (as
 // lit from the front), with the reference's brightness there against the
@@ -96,10 +97,10 @@ int main(int argc, char** argv) {
     try {
         ResultsRecord out(argc, argv);
         out.print(
-            "ss (optically thick: the closed form, no samples) against --method reference, sigma_t %g, albedo "
+            "ss (optically thick: no samples, each pixel's ray marched) against --method reference, sigma_t %g, albedo "
             "0.9, %dx%d, the torus-cube's camera, a point light at distance 4 from in front (0 degrees) over +x "
             "to behind (180). Lighting: runtime/grazing_light.h's mean cosine of the seen surface (ss warns "
-            "under %g). Error: relative RMSE 2 px inside the silhouette; brightness: the reference's mean "
+            "above 0 and under %g). Error: relative RMSE 2 px inside the silhouette; brightness: the reference's mean "
             "there over the front-lit one's.\n\n",
             kSigmaT, size, size, kGrazingLight);
         out.tableHeader({"mesh", "light (degrees)", "lighting", "brightness", "error"},

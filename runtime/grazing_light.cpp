@@ -34,13 +34,12 @@ double seenSurfaceLighting(const TriangleMesh& worldMesh, const Vec3& eye, const
 }
 
 std::string grazingLightLimitation(const std::string& object, double lighting) {
-    if (lighting >= kGrazingLight) return {};
+    if (lighting >= kGrazingLight || !(lighting > 0.0)) return {};
     char share[32];
     std::snprintf(share, sizeof share, "%.3f", lighting);
-    return "object '" + object + "' is optically thick and its seen surface is lit at " + share +
-           " of head-on light (under 0.03): --method ss leaves out light that enters faces the camera does not see "
-           "and leaves near their edges, 10% to 100% of a dim image (measured on a cube and a sphere lit from "
-           "beside and behind, docs/results/grazing.md; --method reference is exact)";
+    return "object '" + object + "' is optically thick and its seen surface is lit at grazing incidence, " + share +
+           " of head-on light (above 0 and under 0.02): --method ss may miss the light there by up to 58% (measured "
+           "on a cube and a sphere, docs/results/grazing.md; --method reference is exact)";
 }
 
 }  // namespace lucent

@@ -4,17 +4,15 @@
 // thinner than the samples could resolve, so each pixel integrates its own view
 // ray instead. Along the ray from the nearest front face, at distance u,
 //   L = sum_j int sigma_s p_j E_j exp(-sigma_t (d_j(u) + u)) du,
-// where d_j(u) is how far light j has come through the medium: the distance
-// along its ray from where it entered the mesh, read from a map of the mesh seen
-// from the light (entry_distances.h). Under a flat face lit at cos_l
-// and seen at cos_v, d_j = u cos_v / cos_l and the integral is the Lommel-
-// Seeliger law albedo p E cos_l / (cos_l + cos_v) whatever sigma_t is. The maps
-// keep what a plane leaves out: light entering one face and leaving through
-// the face beside it along an edge, light through a part thinner than the
-// light's reach, and a face lit from behind. Index-matched boundary, as
-// everywhere in the closed form; blockers lie deeper than the light goes. The
-// light's entry is the mesh's nearest face, so light that leaves the object and
-// enters it again is followed once (a third part on the way counts as medium).
+// where d_j(u) is how far light j has come through the medium, read from maps
+// of the mesh seen from the light (entry_distances.h). Under a flat face lit at
+// cos_l and seen at cos_v, d_j = u cos_v / cos_l and the integral is the
+// Lommel-Seeliger law albedo p E cos_l / (cos_l + cos_v) whatever sigma_t is.
+// The maps keep what that plane leaves out: light entering one face and
+// leaving through the face beside it along an edge, light through a part
+// thinner than the light's reach and the air behind it into the next part, and
+// a face lit from behind. Index-matched boundary, as everywhere in the closed
+// form; blockers lie deeper than the light goes.
 in vec3 worldPosition;
 in vec3 worldNormal;
 
@@ -29,7 +27,7 @@ uniform vec3 albedo;
 uniform vec3 extinction;                 // sigma_t per channel, world units
 uniform float g;                         // Henyey-Greenstein mean cosine
 uniform sampler2D frontDepth;            // nearest front face of the translucent meshes
-uniform sampler2D insideSegments;        // per pixel, the first interval inside them (segment.frag)
+uniform sampler2D insideSegments;        // per pixel, the first two intervals inside them (segment.frag)
 // Per light (entry_distances.h): the plane of its nearest entry into the mesh,
 // the distance of the exit after it and of the entry after that.
 uniform sampler2DArray entryPlanes;
@@ -48,10 +46,12 @@ const float kViewDepth = 9.0;
 // How far light reaching distance s along its ray has come through the medium,
 // from one texel's entries and exit: inside from the nearest entry e1 to the
 // exit x1 and beyond the next entry e2 (from the light itself to x1 when x1
-// comes first: the light stands inside).
-float mediumBefore(float s, float e1, float x1, float e2) {
-    if (x1 < e1) return min(s, x1) + max(s - e1, 0.0);
-    return clamp(s - e1, 0.0, max(x1 - e1, 0.0)) + max(s - e2, 0.0);
+// comes first: the light stands inside). Negative where that texel's ray is
+// in the air at s, within a tolerance: it passes beside x, not through it.
+float mediumBefore(float s, float e1, float x1, float e2, float tolerance) {
+    float start = x1 < e1 ? 0.0 : e1, next = x1 < e1 ? e1 : e2;
+    if (s > x1 + tolerance && s < next - tolerance) return -1.0;
+    return clamp(s - start, 0.0, max(x1 - start, 0.0)) + max(s - next, 0.0);
 }
 
 // Where light j's ray through x meets the entry plane p (outward normal, and
@@ -67,20 +67,22 @@ bool entryAlong(int j, vec3 x, float s, vec4 p, out float e) {
     return true;
 }
 
-// The fragment's own face (outward normal, a point). Where light enters
-// through it, the entry planes of the texels about x are often its
-// neighbours' (a curved mesh's facets): they put the entry up to a texel's
-// size off, many mean free paths in a dense medium. Where a texel spans more
-// than a mean free path, the length through the own face replaces the maps'
-// if the two differ by less than two texels; a larger difference is the maps'
-// to tell (light through another part first, an inner corner).
+// The fragment's own face (outward normal, a point), set by main.
 vec3 faceNormal;
 vec3 facePoint;
 
-// Light j's distance through the medium to x, bilinear over the texels of its
-// maps about x (the lengths, not the distances, are interpolated: neighbouring
-// texels may see a different number of parts). Each texel's entry is where x's
-// own ray meets that texel's plane, exact on a flat face between texel centres.
+// Light j's distance through the medium to x, bilinear over the four texels
+// of its maps about x. Each texel's entry is where x's own ray meets that
+// texel's plane, exact on a flat face between texel centres; a texel whose
+// ray is in the air at x's distance passes beside x and is left out (near an
+// edge, where the neighbouring rays leave early). Where the light enters
+// through the fragment's own face, the texels may be its neighbours' (the
+// facets of a curved mesh, a face seen edge-on from the light): their planes
+// put the entry up to a texel's size off along the face, that over cos_l along
+// the light, many mean free paths in a dense medium. There the own face's
+// plane gives the length when it is the shorter by less than that; by more,
+// or where a texel's ray left the medium before x (another part in the way),
+// the maps tell (an inner corner, a dimple).
 float throughMedium(int j, vec3 x) {
     ivec2 size = textureSize(entryPlanes, 0).xy;
     int layer;
@@ -88,10 +90,10 @@ float throughMedium(int j, vec3 x) {
     float texel;
     if (!distanceMapTexel(j, x, size, layer, st, texel)) return 0.0;
     float s = distanceAlongLight(j, x);
-
     ivec2 base = ivec2(floor(st));
     vec2 f = st - vec2(base);
     float sum = 0.0, weight = 0.0;
+    bool leftBefore = false;
     for (int k = 0; k < 4; ++k) {
         ivec3 p = ivec3(clamp(base + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer);
         float x1 = texelFetch(entryExits, p, 0).r;
@@ -99,16 +101,20 @@ float throughMedium(int j, vec3 x) {
         vec4 plane = texelFetch(entryPlanes, p, 0);
         if (plane.xyz != vec3(0.0) && !entryAlong(j, x, s, plane, e1)) continue;
         if (min(e1, x1) > 1e37) continue;  // a texel the mesh misses says nothing of x
+        float medium = mediumBefore(s, e1, x1, texelFetch(nextEntries, p, 0).r, 2.0 * texel);
+        if (medium < 0.0) continue;
+        leftBefore = leftBefore || x1 < s - 2.0 * texel;
         float w = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k >> 1) != 0 ? f.y : 1.0 - f.y);
-        sum += w * mediumBefore(s, e1, x1, texelFetch(nextEntries, p, 0).r);
+        sum += w * medium;
         weight += w;
     }
     float d = weight > 0.0 ? sum / weight : 0.0;
+    vec4 l = lights[j].position;
+    float cosL = -dot(faceNormal, l.w > 0.5 ? normalize(x - l.xyz) : l.xyz);
     float own;
-    float sigma = min(extinction.r, min(extinction.g, extinction.b));
-    if (sigma * texel > 1.0 && entryAlong(j, x, s, vec4(faceNormal, dot(faceNormal, facePoint)), own) &&
-        abs(s - own - d) < 2.0 * texel)
-        d = max(s - own, 0.0);
+    if (!leftBefore && entryAlong(j, x, s, vec4(faceNormal, dot(faceNormal, facePoint)), own) &&
+        d - (s - own) < 2.0 * texel / max(cosL, 0.05))
+        d = min(d, max(s - own, 0.0));
     return d;
 }
 
@@ -161,18 +167,19 @@ vec3 alongStretch(float a, float b, float before, vec3 view) {
 }
 
 void main() {
+    // The face's own plane, outward as its interpolated normal is (a smooth
+    // normal near a sharp edge can lean past the face); derivatives before any discard.
+    faceNormal = normalize(cross(dFdx(worldPosition), dFdy(worldPosition)));
+    if (dot(faceNormal, worldNormal) < 0.0) faceNormal = -faceNormal;
+    facePoint = worldPosition;
     // Only the nearest front face is visible; concave meshes draw several per pixel.
     if (gl_FragCoord.z > texelFetch(frontDepth, ivec2(gl_FragCoord.xy), 0).r + 1e-6) discard;
     vec3 view = worldPosition - cameraPosition;
     float eye = length(view);
     view /= eye;
-    faceNormal = normalize(cross(dFdx(worldPosition), dFdy(worldPosition)));
-    if (dot(faceNormal, worldNormal) < 0.0) faceNormal = -faceNormal;
-    facePoint = worldPosition;
-    // The first two stretches the ray spends inside (segment.frag); the second is
-    // unused (-1, -2) where the targets hold the first alone.
-    // This fragment is the first stretch's entry: its own distance is exact where
-    // the one read back from the depth buffer is not (against 1/sigma_t).
+    // The first two stretches the ray spends inside (segment.frag). This fragment
+    // is the first's entry: its own distance is exact where the one read back
+    // from the depth buffer is not (against 1/sigma_t).
     vec4 inside = texelFetch(insideSegments, ivec2(gl_FragCoord.xy), 0);
     vec3 sum = alongStretch(eye, inside.y, 0.0, view);
     float crossed = max(inside.y - eye, 0.0);
