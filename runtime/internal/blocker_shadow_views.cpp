@@ -24,6 +24,11 @@ int blockerShadowResolution(size_t lightCount) {
     return std::max(64, int(512.0 * std::sqrt(4.0 / double(lightCount))));
 }
 
+int entryMapResolution(size_t lightCount) {
+    if (lightCount <= 1) return 512;
+    return std::max(32, int(512.0 / std::sqrt(double(lightCount))));
+}
+
 std::vector<glm::mat4> blockerShadowViews(const std::vector<Light>& lights, const Bounds3& blockerBounds) {
     const glm::vec3 centre(blockerBounds.center());
     const float radius = std::max(float(0.5 * blockerBounds.diagonal()), 1e-6f);

@@ -18,6 +18,11 @@ int blockerShadowLayers(size_t lightCount);
 // maps stay within about 25 MB up to 256 lights; never fewer than 64.
 int blockerShadowResolution(size_t lightCount);
 
+// Texels per side of an optically thick object's entry maps (entry_distances.h),
+// 24 bytes a texel: 512 for one light, then fewer so that they stay within
+// about 38 MB (as one light's) up to the 256 lights a scene may have.
+int entryMapResolution(size_t lightCount);
+
 // The view-projection of each layer: around a point light the six 90-degree
 // cube faces +x, -x, +y, -y, +z, -z (2 * axis + negative), each reaching past
 // the blockers' bounding sphere; along a directional light one orthographic view

@@ -46,7 +46,7 @@ void EntryDistances::allocate(int layers, int size) {
 }
 
 void EntryDistances::render(const GpuMesh& mesh, const std::vector<Light>& lights, const Similarity& placement) {
-    allocate(blockerShadowLayers(lights.size()), blockerShadowResolution(lights.size()));
+    allocate(blockerShadowLayers(lights.size()), entryMapResolution(lights.size()));
     Bounds3 world;  // the placed box's corners bound the placed mesh
     for (int corner = 0; corner < 8; ++corner)
         world.extend(

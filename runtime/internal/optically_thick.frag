@@ -45,21 +45,22 @@ const float kViewDepth = 9.0;
 
 // How far light reaching distance s along its ray has come through the medium,
 // from one texel's entries and exit: inside from the nearest entry e1 to the
-// exit x1 and beyond the next entry e2 (from the light itself to x1 when x1
-// comes first: the light stands inside). Negative where that texel's ray is
-// in the air at s, within a tolerance: it passes beside x, not through it.
-float mediumBefore(float s, float e1, float x1, float e2, float tolerance) {
-    float start = x1 < e1 ? 0.0 : e1, next = x1 < e1 ? e1 : e2;
+// exit x1 and beyond the next entry (from the light itself to x1 when x1 comes
+// first: the light stands inside). Negative where that texel's ray is in the
+// air at s, within a tolerance: it passes beside x, not through it.
+float mediumBefore(float s, float e1, float x1, ivec3 texel, float tolerance) {
+    if (x1 >= s) return clamp(s - (x1 < e1 ? 0.0 : e1), 0.0, s);
+    float start = x1 < e1 ? 0.0 : e1;
+    float next = x1 < e1 ? e1 : texelFetch(nextEntries, texel, 0).r;  // fetched only past the exit
     if (s > x1 + tolerance && s < next - tolerance) return -1.0;
-    return clamp(s - start, 0.0, max(x1 - start, 0.0)) + max(s - next, 0.0);
+    return max(x1 - start, 0.0) + max(s - next, 0.0);
 }
 
-// Where light j's ray through x meets the entry plane p (outward normal, and
-// its dot product with the plane's points), in distance along the light;
-// false where the ray runs along the plane.
-bool entryAlong(int j, vec3 x, float s, vec4 p, out float e) {
+// Where light j's ray through x, travelling along the unit travel, meets the
+// entry plane p (outward normal, and its dot product with the plane's points),
+// in distance along the light; false where the ray runs along the plane.
+bool entryAlong(int j, vec3 x, float s, vec3 travel, vec4 p, out float e) {
     vec4 l = lights[j].position;
-    vec3 travel = l.w > 0.5 ? normalize(x - l.xyz) : l.xyz;
     float facing = dot(p.xyz, travel);
     e = 0.0;
     if (!(facing < -1e-3)) return false;
@@ -90,6 +91,8 @@ float throughMedium(int j, vec3 x) {
     float texel;
     if (!distanceMapTexel(j, x, size, layer, st, texel)) return 0.0;
     float s = distanceAlongLight(j, x);
+    vec4 l = lights[j].position;
+    vec3 travel = l.w > 0.5 ? normalize(x - l.xyz) : l.xyz;
     ivec2 base = ivec2(floor(st));
     vec2 f = st - vec2(base);
     float sum = 0.0, weight = 0.0;
@@ -99,9 +102,9 @@ float throughMedium(int j, vec3 x) {
         float x1 = texelFetch(entryExits, p, 0).r;
         float e1 = 3.0e38;
         vec4 plane = texelFetch(entryPlanes, p, 0);
-        if (plane.xyz != vec3(0.0) && !entryAlong(j, x, s, plane, e1)) continue;
+        if (plane.xyz != vec3(0.0) && !entryAlong(j, x, s, travel, plane, e1)) continue;
         if (min(e1, x1) > 1e37) continue;  // a texel the mesh misses says nothing of x
-        float medium = mediumBefore(s, e1, x1, texelFetch(nextEntries, p, 0).r, 2.0 * texel);
+        float medium = mediumBefore(s, e1, x1, p, 2.0 * texel);
         if (medium < 0.0) continue;
         leftBefore = leftBefore || x1 < s - 2.0 * texel;
         float w = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k >> 1) != 0 ? f.y : 1.0 - f.y);
@@ -109,10 +112,9 @@ float throughMedium(int j, vec3 x) {
         weight += w;
     }
     float d = weight > 0.0 ? sum / weight : 0.0;
-    vec4 l = lights[j].position;
-    float cosL = -dot(faceNormal, l.w > 0.5 ? normalize(x - l.xyz) : l.xyz);
+    float cosL = -dot(faceNormal, travel);
     float own;
-    if (!leftBefore && entryAlong(j, x, s, vec4(faceNormal, dot(faceNormal, facePoint)), own) &&
+    if (!leftBefore && entryAlong(j, x, s, travel, vec4(faceNormal, dot(faceNormal, facePoint)), own) &&
         d - (s - own) < 2.0 * texel / max(cosL, 0.05))
         d = min(d, max(s - own, 0.0));
     return d;

@@ -186,6 +186,15 @@ TEST(BlockerShadowViews, ResolutionKeepsManyLightsWithinTheBudget) {
     EXPECT_EQ(blockerShadowLayers(3), 18);
 }
 
+TEST(BlockerShadowViews, EntryMapsKeepManyLightsWithinOneLightsBudget) {
+    EXPECT_EQ(entryMapResolution(1), 512);
+    for (size_t lights : {2u, 4u, 16u, 64u, 256u}) {
+        const double bytes = 6.0 * double(lights) * std::pow(entryMapResolution(lights), 2) * 24.0;
+        EXPECT_LE(bytes, 6.0 * 512 * 512 * 24.0) << lights;  // 37.7 MB
+        EXPECT_GE(entryMapResolution(lights), 32);
+    }
+}
+
 TEST(BlockerShadowViews, EachFaceSeesItsAxisAndTheDirectionalViewEnclosesTheBlockers) {
     Bounds3 blockers;
     blockers.extend(Vec3(-0.5));
