@@ -108,9 +108,12 @@ PreprocessSettings qualityPreset(const std::string& name) {
 namespace {
 
 // Light depth, in mean Poisson radii, under which an object is optically thick.
-// Measured on the unit sphere at 40k samples, 128x128 (docs/accuracy.md): at
-// sigma_t 8 (13 radii) the samples give 7.7% and the closed form 13.7%; at 16
-// (6.9 radii) the samples 15.6% and the closed form 7.0%.
+// Chosen on the unit sphere at 40k samples, 128x128, when the thick form was
+// the Lommel-Seeliger law under each pixel's face: at sigma_t 8 (13 radii) the
+// samples gave 7.7% and that law 13.7%; at 16 (6.9 radii) 15.6% and 7.0%. The
+// marched form that replaced it is 1.5% at sigma_t 8 (docs/accuracy.md,
+// Optically thick objects); the threshold stays while ss's refraction and its
+// cost per light rest on the samples.
 constexpr double kOpticallyThickDepthInRadii = 10.0;
 
 uint32_t channelsOf(const MediumDesc& medium) {
@@ -317,13 +320,12 @@ SampleSet preprocessOwnSpace(const VolumeObject& object, const PreprocessSetting
 
     // Light that dies within a fraction of the samples' spacing leaves nothing for
     // Gaussians of that width to resolve: their mass sits mostly where no light is.
-    // There the medium is a sliver under a locally flat surface, whose single
-    // scattering has a closed form (runtime/internal/optically_thick.frag); the
-    // object needs no samples.
+    // There the runtime marches each pixel's ray through the lit sliver instead
+    // (runtime/internal/optically_thick.frag); the object needs no samples.
     if (settings.scheme == SampleScheme::Lucent && maxDepth < kOpticallyThickDepthInRadii * r) {
         std::fprintf(stderr,
                      "lucent: %s: light dies within %.3g, under %.3g sample spacings: optically thick, "
-                     "drawn as the surface's single scattering (no samples)\n",
+                     "each pixel's ray marched instead (no samples)\n",
                      object.desc().name.c_str(), maxDepth, maxDepth / r);
         SampleSet set = emptySetFor(object, settings, r);
         set.parameters.scheme = SampleScheme::OpticallyThick;
