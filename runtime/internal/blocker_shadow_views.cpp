@@ -29,6 +29,26 @@ int entryMapResolution(size_t lightCount) {
     return std::max(32, int(512.0 / std::sqrt(double(lightCount))));
 }
 
+const Light* layerLight(const std::vector<Light>& lights, int layer) {
+    const size_t j = size_t(layer / 6);
+    if (layer < 0 || j >= lights.size()) return nullptr;
+    if (lights[j].type == Light::Type::Directional && layer % 6 != 0) return nullptr;
+    return &lights[j];
+}
+
+glm::vec4 packedLight(const Light& light) {
+    return light.type == Light::Type::Point ? glm::vec4(glm::vec3(light.position), 1.0f)
+                                            : glm::vec4(glm::normalize(glm::vec3(light.direction)), 0.0f);
+}
+
+Bounds3 placedBox(const Bounds3& box, const Similarity& placement) {
+    Bounds3 world;
+    for (int corner = 0; corner < 8; ++corner)
+        world.extend(placement.point(Vec3(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                                          corner & 4 ? box.max.z : box.min.z)));
+    return world;
+}
+
 std::vector<glm::mat4> blockerShadowViews(const std::vector<Light>& lights, const Bounds3& blockerBounds) {
     const glm::vec3 centre(blockerBounds.center());
     const float radius = std::max(float(0.5 * blockerBounds.diagonal()), 1e-6f);

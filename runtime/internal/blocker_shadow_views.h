@@ -8,6 +8,7 @@
 
 #include "core/math.h"
 #include "core/scene.h"
+#include "core/similarity.h"
 
 namespace lucent {
 
@@ -27,6 +28,17 @@ int entryMapResolution(size_t lightCount);
 // cube faces +x, -x, +y, -y, +z, -z (2 * axis + negative), each reaching past
 // the blockers' bounding sphere; along a directional light one orthographic view
 // enclosing that sphere. Unused layers hold the identity.
+// The light a layer looks from; null where the layer is unused (past the
+// lights, or one of a directional light's last five).
+const Light* layerLight(const std::vector<Light>& lights, int layer);
+
+// A light as the distance shaders read it: its position with w = 1 (a point
+// light), or its unit direction of travel with w = 0.
+glm::vec4 packedLight(const Light& light);
+
+// The world box about a box of object space placed by placement: its corners'.
+Bounds3 placedBox(const Bounds3& box, const Similarity& placement);
+
 std::vector<glm::mat4> blockerShadowViews(const std::vector<Light>& lights, const Bounds3& blockerBounds);
 
 }  // namespace lucent

@@ -48,12 +48,7 @@ void BlockerShadows::render(const std::vector<Light>& lights, const Similarity& 
         glCreateBuffers(1, &views_);
         glNamedBufferStorage(views_, GLsizeiptr(layers * sizeof(glm::mat4)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
-    Bounds3 world;  // the placed box's corners bound the placed blockers
-    for (int corner = 0; corner < 8; ++corner)
-        world.extend(
-            placement.point(Vec3(corner & 1 ? bounds_.max.x : bounds_.min.x, corner & 2 ? bounds_.max.y : bounds_.min.y,
-                                 corner & 4 ? bounds_.max.z : bounds_.min.z)));
-    const std::vector<glm::mat4> views = blockerShadowViews(lights, world);
+    const std::vector<glm::mat4> views = blockerShadowViews(lights, placedBox(bounds_, placement));
     glNamedBufferSubData(views_, 0, GLsizeiptr(views.size() * sizeof(glm::mat4)), views.data());
 
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
@@ -68,16 +63,11 @@ void BlockerShadows::render(const std::vector<Light>& lights, const Similarity& 
     for (int layer = 0; layer < layers; ++layer) {
         glNamedFramebufferTextureLayer(framebuffer_, GL_COLOR_ATTACHMENT0, texture_, 0, layer);
         glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, &far);
-        const size_t j = size_t(layer / 6);
-        if (j >= lights.size()) continue;
-        const Light& l = lights[j];
-        if (l.type == Light::Type::Directional && layer % 6 != 0) continue;
-        if (layer == int(6 * j) &&
-            glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        const Light* l = layerLight(lights, layer);
+        if (!l) continue;
+        if (layer % 6 == 0 && glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw Error("OpenGL: the blocker shadow framebuffer is incomplete");
-        const glm::vec4 packed = l.type == Light::Type::Point ? glm::vec4(glm::vec3(l.position), 1.0f)
-                                                              : glm::vec4(glm::normalize(glm::vec3(l.direction)), 0.0f);
-        glUniform4fv(program_.uniform("light"), 1, glm::value_ptr(packed));
+        glUniform4fv(program_.uniform("light"), 1, glm::value_ptr(packedLight(*l)));
         glUniformMatrix4fv(program_.uniform("viewProjection"), 1, GL_FALSE, glm::value_ptr(views[size_t(layer)]));
         for (const auto& mesh : meshes_) mesh->draw();
     }

@@ -186,6 +186,36 @@ TEST(BlockerShadowViews, ResolutionKeepsManyLightsWithinTheBudget) {
     EXPECT_EQ(blockerShadowLayers(3), 18);
 }
 
+TEST(BlockerShadowViews, LayersKnowTheirLightAndAPlacedBoxHoldsItsCorners) {
+    Light point;
+    point.position = Vec3(1.0, 2.0, 3.0);
+    Light directional;
+    directional.type = Light::Type::Directional;
+    directional.direction = Vec3(0.0, 0.0, -2.0);
+    const std::vector<Light> lights{point, directional};
+    for (int layer = 0; layer < 6; ++layer) EXPECT_EQ(layerLight(lights, layer), &lights[0]) << layer;
+    EXPECT_EQ(layerLight(lights, 6), &lights[1]);
+    for (int layer = 7; layer < 13; ++layer) EXPECT_EQ(layerLight(lights, layer), nullptr) << layer;
+    EXPECT_EQ(packedLight(point), glm::vec4(1.0f, 2.0f, 3.0f, 1.0f));
+    EXPECT_EQ(packedLight(directional), glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
+
+    Bounds3 box;
+    box.extend(Vec3(-1.0));
+    box.extend(Vec3(1.0));
+    Similarity eighthTurn;  // 45 degrees about z, doubled, moved along x
+    eighthTurn.scale = 2.0;
+    eighthTurn.rotation = glm::dmat3(glm::dvec3(0.70710678, 0.70710678, 0.0), glm::dvec3(-0.70710678, 0.70710678, 0.0),
+                                     glm::dvec3(0.0, 0.0, 1.0));
+    eighthTurn.translation = Vec3(5.0, 0.0, 0.0);
+    const Bounds3 placed = placedBox(box, eighthTurn);
+    const double reach = 2.0 * std::sqrt(2.0);  // a corner's distance from the axis, doubled
+    EXPECT_NEAR(placed.min.x, 5.0 - reach, 1e-6);
+    EXPECT_NEAR(placed.max.x, 5.0 + reach, 1e-6);
+    EXPECT_NEAR(placed.max.y, reach, 1e-6);
+    EXPECT_NEAR(placed.min.z, -2.0, 1e-12);
+    EXPECT_NEAR(placed.max.z, 2.0, 1e-12);
+}
+
 TEST(BlockerShadowViews, EntryMapsKeepManyLightsWithinOneLightsBudget) {
     EXPECT_EQ(entryMapResolution(1), 512);
     for (size_t lights : {2u, 4u, 16u, 64u, 256u}) {
