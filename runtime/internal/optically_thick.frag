@@ -36,9 +36,10 @@ uniform sampler2DArray nextEntries;
 
 out vec4 colour;
 
-// Steps along the ray. On each the optical depth d_j + u is taken as linear and
-// integrated exactly, so a flat face lit by a distant light is exact with any
-// number; the steps resolve edges and thin parts.
+// Steps along the ray. On each, the light sigma_s p E and the optical depth
+// d_j + u are taken as linear and their product with exp(-(d_j + u))
+// integrated exactly (stepIntegral), so a flat face lit by a distant light is
+// exact with any number; the steps resolve edges and thin parts.
 const int kSteps = 32;
 // The ray is followed until the view's transmittance falls to e^-9 (1.2e-4).
 const float kViewDepth = 9.0;
@@ -84,11 +85,12 @@ vec3 facePoint;
 // plane gives the length when it is the shorter by less than that; by more,
 // or where a texel's ray left the medium before x (another part in the way),
 // the maps tell (an inner corner, a dimple).
-float throughMedium(int j, vec3 x) {
+float throughMedium(int j, vec3 x, out bool underOwnFace) {
     ivec2 size = textureSize(entryPlanes, 0).xy;
     int layer;
     vec2 st;
     float texel;
+    underOwnFace = false;
     if (!distanceMapTexel(j, x, size, layer, st, texel)) return 0.0;
     float s = distanceAlongLight(j, x);
     vec4 l = lights[j].position;
@@ -115,8 +117,10 @@ float throughMedium(int j, vec3 x) {
     float cosL = -dot(faceNormal, travel);
     float own;
     if (!leftBefore && entryAlong(j, x, s, travel, vec4(faceNormal, dot(faceNormal, facePoint)), own) &&
-        d - (s - own) < 2.0 * texel / max(cosL, 0.05))
+        d - (s - own) < 2.0 * texel / max(cosL, 0.05)) {
+        underOwnFace = s - own <= d + 0.01 * texel;
         d = min(d, max(s - own, 0.0));
+    }
     return d;
 }
 
@@ -136,31 +140,50 @@ vec3 scatteredAt(int j, vec3 x, vec3 view) {
     return henyeyGreenstein(g, dot(-toLight, -view)) * lights[j].power.rgb * falloff;
 }
 
-// int exp(-t) over a step on which t runs linearly from a to b, per unit length.
-vec3 meanTransmittance(vec3 a, vec3 b) {
-    vec3 delta = b - a;
-    vec3 exact = (exp(-a) - exp(-b)) / delta;
-    vec3 small = exp(-a) * (1.0 - 0.5 * delta);
-    return mix(exact, small, lessThan(abs(delta), vec3(1e-3)));
+// int f exp(-t) over a step of length h on which both f and the optical depth t
+// run linearly, f from f0 to f1 and t from a to b, per channel, exactly:
+// h e^-a (f0 (E - G) + f1 G) with d = b - a, E = (1 - e^-d) / d and
+// G = (1 - e^-d) / d^2 - e^-d / d (1 and 1/2 as d -> 0: the trapezoid).
+vec3 stepIntegral(vec3 f0, vec3 f1, vec3 a, vec3 b, float h) {
+    vec3 d = b - a;
+    vec3 decay = exp(-d);
+    vec3 e = (1.0 - decay) / d;
+    vec3 g = (e - decay) / d;
+    bvec3 small = lessThan(abs(d), vec3(1e-2));
+    e = mix(e, 1.0 - d * (0.5 - d / 6.0), small);
+    g = mix(g, 0.5 - d * (1.0 / 3.0 - d / 8.0), small);
+    return h * exp(-a) * (f0 * (e - g) + f1 * g);
 }
 
 // The light scattered toward the eye along the stretch [a, b] of the view ray
 // (eye distances), dimmed by the medium crossed on the way before a (a length).
+// Where the light enters through the pixel's own face at the stretch's ends
+// and middle, the light's way grows linearly along it (a convex object's is
+// the least over its faces' planes, and here one plane gives it at three
+// points) and two steps are exact: most pixels of a lit face. Elsewhere (an
+// edge, a thin part, a face lit from behind) kSteps.
 vec3 alongStretch(float a, float b, float before, vec3 view) {
     float reach = min(b - a, kViewDepth / max(min(extinction.r, min(extinction.g, extinction.b)), 1e-30) - before);
     if (!(reach > 0.0)) return vec3(0.0);
-    float h = reach / float(kSteps);
     vec3 sum = vec3(0.0);
     for (int j = 0; j < lightCount; ++j) {
         vec3 x = cameraPosition + a * view;
+        bool first, middle, last;
+        float d0 = throughMedium(j, x, first);
+        float dMiddle = throughMedium(j, x + 0.5 * reach * view, middle);
+        float d1 = throughMedium(j, x + reach * view, last);
+        int steps = first && middle && last ? 2 : kSteps;
+        float h = reach / float(steps);
         vec3 fBefore = scatteredAt(j, x, view);
-        vec3 depthBefore = extinction * (throughMedium(j, x) + before);
-        for (int k = 1; k <= kSteps; ++k) {
+        vec3 depthBefore = extinction * (d0 + before);
+        for (int k = 1; k <= steps; ++k) {
             float u = h * float(k);
             x = cameraPosition + (a + u) * view;
+            bool unused;
+            float d = steps == 2 ? (k == 1 ? dMiddle : d1) : throughMedium(j, x, unused);
             vec3 fAfter = scatteredAt(j, x, view);
-            vec3 depthAfter = extinction * (throughMedium(j, x) + before + u);
-            sum += 0.5 * (fBefore + fAfter) * extinction * h * meanTransmittance(depthBefore, depthAfter);
+            vec3 depthAfter = extinction * (d + before + u);
+            sum += extinction * stepIntegral(fBefore, fAfter, depthBefore, depthAfter, h);
             fBefore = fAfter;
             depthBefore = depthAfter;
         }
