@@ -158,10 +158,10 @@ vec3 stepIntegral(vec3 f0, vec3 f1, vec3 a, vec3 b, float h) {
 // The light scattered toward the eye along the stretch [a, b] of the view ray
 // (eye distances), dimmed by the medium crossed on the way before a (a length).
 // Where the light enters through the pixel's own face at the stretch's ends
-// and middle, the light's way grows linearly along it (a convex object's is
-// the least over its faces' planes, and here one plane gives it at three
-// points) and two steps are exact: most pixels of a lit face. Elsewhere (an
-// edge, a thin part, a face lit from behind) kSteps.
+// and middle, and its way there is linear, it is linear all along (a convex
+// object's is the least over its faces' planes, and here one plane gives it
+// at three points) and two steps are exact: most pixels of a densely lit
+// face. Elsewhere (an edge, a thin part, a face lit from behind) kSteps.
 vec3 alongStretch(float a, float b, float before, vec3 view) {
     float reach = min(b - a, kViewDepth / max(min(extinction.r, min(extinction.g, extinction.b)), 1e-30) - before);
     if (!(reach > 0.0)) return vec3(0.0);
@@ -172,7 +172,8 @@ vec3 alongStretch(float a, float b, float before, vec3 view) {
         float d0 = throughMedium(j, x, first);
         float dMiddle = throughMedium(j, x + 0.5 * reach * view, middle);
         float d1 = throughMedium(j, x + reach * view, last);
-        int steps = first && middle && last ? 2 : kSteps;
+        bool linear = abs(dMiddle - 0.5 * (d0 + d1)) < 1e-3 * reach;
+        int steps = first && middle && last && linear ? 2 : kSteps;
         float h = reach / float(steps);
         vec3 fBefore = scatteredAt(j, x, view);
         vec3 depthBefore = extinction * (d0 + before);
