@@ -49,7 +49,7 @@ Command addInfoCommand(CLI::App& app) {
         std::printf("  placement scale        %g (the optical size it was made for)\n", p.placementScale);
         std::printf("  scheme                 %s\n", p.scheme == SampleScheme::Published ? "published (thesis 3.3)"
                                                      : p.scheme == SampleScheme::OpticallyThick
-                                                         ? "optically thick (the surface's closed form, no samples)"
+                                                         ? "optically thick (each pixel's ray marched, no samples)"
                                                          : "lucent");
         Stats radius, width, weight, dc, error, share, curvature;
         const size_t stride = s.coefficientsPerSample();

@@ -31,7 +31,7 @@ struct ScatteringRenderer::Impl {
     GpuLights lights;
     FrameTargets targets;
     FrameTargets scatterTargets;  // at the scattering's reduced resolution, when it is reduced
-    // In drawing order: the reflected surface, then single scattering (closed form, then samples), then multiple.
+    // In drawing order: the reflected surface, then single scattering (marched, then samples), then multiple.
     std::vector<std::unique_ptr<RenderPass>> passes;
     GridPass* grids = nullptr;
 
@@ -228,7 +228,7 @@ void ScatteringRenderer::setEnvironment(const std::vector<Light>& directions) {
     for (GpuObject& o : impl_->objects) {
         o.samples->environmentValid = false;
         o.samples->receivedValid = false;
-        o.entryDistancesValid = false;  // the closed form loops over the environment's directions too
+        o.entryDistancesValid = false;  // the thick pass loops over the environment's directions too
     }
 }
 

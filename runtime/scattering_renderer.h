@@ -32,7 +32,7 @@ struct TranslucentObject {
     Similarity placement;  // where the mesh, blockers and samples stand in the world
     // The object's medium for tracing the light to each sample (DrawOptions::tracedLight),
     // or null: the samples' SH alone. Required when the samples are optically
-    // thick (no samples): the closed form needs its sigma_t. Must outlive the renderer.
+    // thick (no samples): its rays are marched with its sigma_t. Must outlive the renderer.
     const VolumeObject* volume = nullptr;
 };
 

@@ -128,7 +128,7 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
         if (!drawnRefracted(ior, fromFront, options.tracedLight)) {
             const std::string why = !options.tracedLight ? "with --light sh"
                                     : scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
-                                        ? "optically thick, drawn in closed form"
+                                        ? "optically thick, each pixel's ray marched"
                                         : "its density varies within the object";
             out.push_back(object + " is drawn index-matched (" + why +
                           "): no refraction, no reflection at the boundary (--method path and reference refract)");
