@@ -246,8 +246,6 @@ void ScatteringRenderer::Impl::uploadLights() {
     glCreateBuffers(1, &lights.buffer);
     packed.resize(kMaxLights);  // the uniform block's whole size, as lights.glsl declares it
     glNamedBufferStorage(lights.buffer, GLsizeiptr(packed.size() * sizeof(gpu::Light)), packed.data(), 0);
-    lights.count = int(lights.lights.size());
-    lights.environmentCount = int(lights.environment.size());
 }
 
 void ScatteringRenderer::draw(const ViewSetup& view, const DrawOptions& options) {

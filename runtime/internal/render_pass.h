@@ -57,11 +57,11 @@ struct GpuObject {
 // closed forms loop over and the samples read projected onto SH (environment_sh.comp).
 struct GpuLights {
     GLuint buffer = 0;
-    int count = 0;
-    int environmentCount = 0;
     std::vector<Light> lights;
     std::vector<Light> environment;  // ScatteringRenderer::setEnvironment's, after lights in the block
-    int withEnvironment() const { return count + environmentCount; }
+    int count() const { return int(lights.size()); }
+    int environmentCount() const { return int(environment.size()); }
+    int withEnvironment() const { return count() + environmentCount(); }
 };
 
 // What every pass of one frame sees.

@@ -87,8 +87,8 @@ bool boundaryRefracts(const GpuObject& o) {
 }  // namespace
 
 bool SamplePass::traced(const GpuObject& o, const FrameContext& frame) {
-    return frame.options.tracedLight && o.volume && !o.opticallyThick && frame.lights.count > 0 &&
-           o.samples->tracedDepthsFit(frame.lights.count, boundaryRefracts(o) ? 2 : 1);
+    return frame.options.tracedLight && o.volume && !o.opticallyThick && frame.lights.count() > 0 &&
+           o.samples->tracedDepthsFit(frame.lights.count(), boundaryRefracts(o) ? 2 : 1);
 }
 
 bool SamplePass::refracted(const GpuObject& o, const FrameContext& frame) {
@@ -143,7 +143,7 @@ void SamplePass::setFrameUniforms(const GlProgram& program, const FrameContext& 
     glProgramUniformMatrix4fv(id, program.uniform("projection"), 1, GL_FALSE, glm::value_ptr(view.projection));
     glProgramUniform3fv(id, program.uniform("cameraPosition"), 1, glm::value_ptr(view.cameraPosition));
     glProgramUniform4fv(id, program.uniform("pixelToView"), 1, glm::value_ptr(pixelToView));
-    glProgramUniform1i(id, program.uniform("lightCount"), frame.lights.count);
+    glProgramUniform1i(id, program.uniform("lightCount"), frame.lights.count());
     glProgramUniform1f(id, program.uniform("cutoffSigmas"), float(cutoffSigmas_));
     glProgramUniform1f(id, program.uniform("keptMassInverse"), float(keptMassInverse_));
     if (frame.options.discardBelow > 0.0f)
@@ -167,7 +167,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
     glUniform1i(c.uniform("shOrder"), o.samples->shOrder());
     glUniform1i(c.uniform("channels"), o.samples->channels());
     glUniform1f(c.uniform("g"), 0.0f);
-    glUniform1i(c.uniform("lightCount"), frame.lights.count);
+    glUniform1i(c.uniform("lightCount"), frame.lights.count());
     glUniform1f(c.uniform("extinctionScale"), scale);
     glUniform1i(c.uniform("sampleCount"), GLint(o.samples->size()));
     o.samples->computeReceived();
@@ -177,7 +177,7 @@ void SamplePass::updateReceived(GpuObject& o, const FrameContext& frame) const {
 }
 
 bool SamplePass::environmentSh(const GpuObject& o, const FrameContext& frame) {
-    return frame.lights.environmentCount > 0 && !o.opticallyThick && o.samples->size() > 0;
+    return frame.lights.environmentCount() > 0 && !o.opticallyThick && o.samples->size() > 0;
 }
 
 // Once per change of the environment, the placements or the medium scale.
@@ -198,8 +198,8 @@ void SamplePass::updateEnvironment(GpuObject& o, const FrameContext& frame) cons
     glUniform1i(c.uniform("channels"), o.samples->channels());
     glUniform1f(c.uniform("extinctionScale"), scale);
     glUniform1i(c.uniform("sampleCount"), GLint(o.samples->size()));
-    glUniform1i(c.uniform("environmentFirst"), frame.lights.count);
-    glUniform1i(c.uniform("environmentCount"), frame.lights.environmentCount);
+    glUniform1i(c.uniform("environmentFirst"), frame.lights.count());
+    glUniform1i(c.uniform("environmentCount"), frame.lights.environmentCount());
     glUniform1i(c.uniform("environmentBands"), bands);
     o.samples->computeEnvironment(bands);
     o.samples->environmentValid = true;

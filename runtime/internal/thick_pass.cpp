@@ -11,7 +11,7 @@
 namespace lucent {
 
 namespace {
-// The lights the closed form loops over: the lights, then the environment's directions.
+// The lights optically_thick.frag loops over: the lights, then the environment's directions.
 std::vector<Light> allLights(const GpuLights& lights) {
     std::vector<Light> all = lights.lights;
     all.insert(all.end(), lights.environment.begin(), lights.environment.end());
