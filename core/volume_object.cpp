@@ -51,11 +51,12 @@ std::vector<TriangleMesh> loadBlockers(const ObjectDesc& desc, std::vector<std::
     return blockers;
 }
 
+TriangleMesh loadObjectMesh(const ObjectDesc& desc, std::vector<std::string>& warnings) {
+    return desc.gltfNode >= 0 ? loadGltfMesh(desc.mesh, desc.gltfNode, warnings) : loadClosedMesh(desc.mesh, warnings);
+}
+
 VolumeObject::VolumeObject(const ObjectDesc& desc, std::vector<std::string>& warnings)
-    : VolumeObject(
-          desc,
-          desc.gltfNode >= 0 ? loadGltfMesh(desc.mesh, desc.gltfNode, warnings) : loadClosedMesh(desc.mesh, warnings),
-          loadBlockers(desc, warnings)) {}
+    : VolumeObject(desc, loadObjectMesh(desc, warnings), loadBlockers(desc, warnings)) {}
 
 VolumeObject::VolumeObject(const ObjectDesc& desc, TriangleMesh mesh, std::vector<TriangleMesh> blockers)
     : desc_(desc),

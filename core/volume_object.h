@@ -101,6 +101,10 @@ inline Rgb transmittance(const Rgb& sigmaT, double path) {
     return glm::exp(-sigmaT * path);
 }
 
+// The object's boundary mesh in its own space, from its mesh file (a glTF node's, or
+// OBJ, PLY, OFF, STL), checked as loadClosedMesh checks it.
+TriangleMesh loadObjectMesh(const ObjectDesc& desc, std::vector<std::string>& warnings);
+
 // Loads every object of scene. Where checkedMeshes[i] holds faces, object i takes
 // that mesh (in its own space, already checked: from its sample file, whose
 // fingerprint matched) instead of reading its mesh file; its blockers and density
