@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/surface_shape.h"
+#include "core/volume_object.h"
 #include "runtime/offscreen_context.h"
 #include "reference/path_method.h"
 #include "reference/reference_method.h"
@@ -66,6 +68,60 @@ bool available(const std::string& name) {
 
 std::string percent(double x) { return std::to_string(int(std::lround(100.0 * x))) + "%"; }
 
+double largestAlbedo(const ObjectDesc& o) {
+    return std::max({o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});
+}
+
+// What keeps lbl from the goal at o's refracting boundary, measured on the
+// shapes of docs/accuracy.md (What auto picks), or empty. Its view bends through
+// a smoothed index and ss's samples are drawn where one pixel's refracted ray
+// passes nearest: both hold where the refracted view rays cross nowhere inside,
+// a smooth convex surface (core/surface_shape.h).
+std::string latticeMisses(const SceneDesc& scene, const ObjectDesc& o) {
+    if (scene.objects.size() > 1)
+        return std::to_string(scene.objects.size() - 1) +
+               " other object(s) beside it, where lbl was measured on one alone";
+    std::vector<std::string> ignored;  // loading the scene says them
+    const SurfaceShape shape = surfaceShape(loadObjectMesh(o, ignored));
+    if (!shape.convex)
+        return "concave parts, through which the refracted view folds (lbl 21% from full transport on a "
+               "torus, 13-16% on the bunny, 32-65% on CAD solids with holes, slots, dimples and ribs)";
+    if (shape.sharpestDegrees >= kCreaseDegrees)
+        return "sharp edges, where the refracted view folds (lbl 26% on a lens with a sharp rim, 46-55% on a box)";
+    if (!smoothConvex(shape))
+        return "flat faces, " + percent(shape.largestFlatShare) +
+               " of its area in one, joined by bends that fold the refracted view (lbl 20-29% on a box with rounded "
+               "edges)";
+    const double albedo = largestAlbedo(o);
+    if (albedo > kRefractingLatticeAlbedo)
+        return "albedo " + std::to_string(albedo).substr(0, 4) +
+               ", and lbl's light held in by the boundary drifts above albedo " +
+               std::to_string(kRefractingLatticeAlbedo).substr(0, 3) +
+               " (8-10% from full transport at 0.9, 11% at 0.95)";
+    if (o.medium.g > kRefractingLatticeMaxG || o.medium.g < kRefractingLatticeMinG)
+        return "g " + std::to_string(o.medium.g).substr(0, 5) +
+               ", and lbl's diffusion inside a reflecting boundary misses forward scattering (10% from full "
+               "transport at g 0.15, 14-15% at 0.3, 33% at 0.5)";
+    if (!available("lbl")) return "a smooth convex surface, but this build has no lbl";
+    return {};
+}
+
+// A scene with a refracting boundary: lbl where it is within the goal, else the path tracer.
+MethodChoice refractingChoice(const SceneDesc& scene, const ObjectDesc& o) {
+    const std::string object = "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4);
+    const std::string misses = latticeMisses(scene, o);
+    if (misses.empty())
+        return {"lbl", object +
+                           " and a smooth convex surface: lbl refracts and reflects at its boundary within 4-8% of "
+                           "full transport on a sphere, an ellipsoid and a capsule at ior 1.33-1.7, albedo up to " +
+                           std::to_string(kRefractingLatticeAlbedo).substr(0, 3) + " and g from " +
+                           std::to_string(kRefractingLatticeMinG).substr(0, 4) + " to " +
+                           std::to_string(kRefractingLatticeMaxG).substr(0, 3)};
+    return {"path", object + " and " + misses +
+                        ": only the path tracer gives full transport through it within 10%; it is slow: lower "
+                        "--samples or set --noise for a draft"};
+}
+
 }  // namespace
 
 bool openGlIsSoftware() {
@@ -85,22 +141,11 @@ MethodChoice chooseMethod(const SceneDesc& scene) {
     // tracer) at the least time, from the measurements of docs/accuracy.md
     // ("What auto picks"). Single scattering alone misses light that grows with
     // the albedo; below kSingleScatteringAlbedo it stays within the goal.
-    // Only the path tracer gives full transport through a boundary whose ior is
-    // not 1 within the goal on every bundled scene: lbl and mdom refract and
-    // reflect at the boundary (3-6% on the sphere up to albedo 0.8) but miss it
-    // on the bunny at every albedo, where ss's single scattering misses its own
-    // (docs/accuracy.md, What auto picks).
+    // A refracting boundary has rules of its own (refractingChoice).
     for (const ObjectDesc& o : scene.objects)
-        if (o.medium.ior != 1.0)
-            return {"path",
-                    "object '" + o.name + "' has ior " + std::to_string(o.medium.ior).substr(0, 4) +
-                        ": only the path tracer gives full transport through a refracting boundary within 10% on "
-                        "every measured scene (lbl is 3-5% from it on the sphere up to albedo 0.8, but 13-16% on "
-                        "the bunny at every albedo from 0.1 to 0.95, where ss's own view of the bunny misses: "
-                        "docs/results/lbl-refraction.md); it is slow: lower --samples or set --noise for a draft"};
+        if (o.medium.ior != 1.0) return refractingChoice(scene, o);
     double albedo = 0.0;
-    for (const ObjectDesc& o : scene.objects)
-        albedo = std::max({albedo, o.medium.albedo.r, o.medium.albedo.g, o.medium.albedo.b});
+    for (const ObjectDesc& o : scene.objects) albedo = std::max(albedo, largestAlbedo(o));
     const std::string a = std::to_string(albedo).substr(0, 4);
     if (albedo <= kSingleScatteringAlbedo) {
         const std::string why =

@@ -31,6 +31,13 @@ inline constexpr double kLatticeMaxG = 0.5;
 // bunny measured at g 0.8 and albedo 0.9, against a path-traced truth whose own
 // noise is taken out; 32% on the sphere at 0.9).
 inline constexpr double kMdomMaxG = 0.8;
+// At a refracting boundary lbl stays within the goal on a lone smooth convex
+// object (core/surface_shape.h) up to this albedo and for g in [min, max]
+// (4-8% measured on a sphere, an ellipsoid and a capsule; 8-10% at albedo 0.9,
+// 10% at g 0.15, 14-15% at g 0.3).
+inline constexpr double kRefractingLatticeAlbedo = 0.8;
+inline constexpr double kRefractingLatticeMinG = -0.3;
+inline constexpr double kRefractingLatticeMaxG = 0.0;
 // Up to this many pixels the CPU reference is as fast as ss on a software OpenGL.
 inline constexpr long kReferenceAsFastPixels = 256 * 256;
 
