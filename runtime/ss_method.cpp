@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/sample_set.h"
+#include "core/surface_shape.h"
 #include "runtime/offscreen_context.h"
 #include "runtime/internal/refracted_view.h"
 #include "runtime/grazing_light.h"
@@ -117,6 +118,33 @@ std::vector<std::string> SsMethod::limitations(const LoadedScene& scene, const M
     return out;
 }
 
+namespace {
+
+// What ss's refracted view misses on a surface of this shape. Each sample is
+// drawn where the one pixel whose refracted ray passes nearest sees it; where
+// the view folds (flat faces joined by bends, sharp edges, concave parts) a
+// point inside is seen through two faces or two parts, and ss draws it once.
+// Measured against the refracting reference (docs/accuracy.md, ss through a
+// refracting boundary; docs/results/refraction.md and refraction-back.md).
+std::string refractedViewLimitation(const SurfaceShape& shape) {
+    const std::string common =
+        ": --method ss refracts the view and the light at its boundary, but follows no view ray into another "
+        "part of it, nor the camera ray reflected off it, nor a second reflection inside";
+    if (smoothConvex(shape))
+        return common +
+               ": 3-6% from the refracting reference on a sphere, an ellipsoid and a capsule (smooth and "
+               "convex, as this surface is; 6-9% at g 0.3-0.5)";
+    return common + ", and draws each point inside once where its " +
+           (shape.convex ? std::string(shape.sharpestDegrees >= kCreaseDegrees ? "sharp edges" : "flat faces")
+                         : std::string("concave parts")) +
+           " show it twice: 11% from the refracting reference on a lens with a sharp rim, 13-24% on a box with "
+           "rounded edges, 20-25% on a sharp box, 18-19% on a torus, 24-30% on CAD solids with dimples or slots, "
+           "too dark; 12-13% on the wax bunny lit from the front at ior 1.33-1.5 (10-12% over pixel means), and "
+           "25-29% lit from behind (docs/results/refraction-back.md)";
+}
+
+}  // namespace
+
 std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene, const SsOptions& options) {
     std::vector<std::string> out;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -134,15 +162,7 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
                           "): no refraction, no reflection at the boundary (--method path and reference refract)");
             continue;
         }
-        // Measured by lucent-bench-hybrid refraction (docs/results/refraction.md).
-        out.push_back(
-            object +
-            ": --method ss refracts the view and the light at its boundary, but follows no view ray into "
-            "another part of it, nor the camera ray reflected off it, nor a second reflection inside: 3% "
-            "from the refracting reference on the sphere, 12-13% on the wax bunny lit from the front at ior "
-            "1.33-1.5 (10-12% over pixel means: caustics finer than a pixel), and 25-29% lit from behind, too dark: "
-            "the light scatters deep inside, where the refracted rays of pixels far from where a sample is drawn "
-            "pass through it too (docs/results/refraction-back.md)");
+        out.push_back(object + refractedViewLimitation(surfaceShape(o.objectMesh())));
         // The refracted view starts where the camera's ray enters the object.
         if (o.contains(scene.desc.camera.position))
             out.push_back(object + ": the camera stands inside it, and --method ss draws nothing of it");
