@@ -82,7 +82,8 @@ std::string latticeMisses(const SceneDesc& scene, const ObjectDesc& o) {
         return std::to_string(scene.objects.size() - 1) +
                " other object(s) beside it, where lbl was measured on one alone";
     std::vector<std::string> ignored;  // loading the scene says them
-    const SurfaceShape shape = surfaceShape(loadObjectMesh(o, ignored));
+    const TriangleMesh mesh = loadObjectMesh(o, ignored);
+    const SurfaceShape shape = surfaceShape(mesh);
     if (!shape.convex)
         return "concave parts, through which the refracted view folds (lbl 21% from full transport on a "
                "torus, 13-16% on the bunny, 32-65% on CAD solids with holes, slots, dimples and ribs)";
@@ -92,6 +93,17 @@ std::string latticeMisses(const SceneDesc& scene, const ObjectDesc& o) {
         return "flat faces, " + percent(shape.largestFlatShare) +
                " of its area in one, joined by bends that fold the refracted view (lbl 20-29% on a box with rounded "
                "edges)";
+    if (o.medium.density.type != DensityDesc::Type::Constant)
+        return "a density that varies, where lbl was measured in constant media alone";
+    const Vec3 half = 0.5 * (mesh.bounds().max - mesh.bounds().min);
+    const double radius = std::min({o.medium.sigmaT.r, o.medium.sigmaT.g, o.medium.sigmaT.b}) * o.transform.scale *
+                          std::min({half.x, half.y, half.z});
+    if (radius < kRefractingLatticeOpticalRadius[0] || radius > kRefractingLatticeOpticalRadius[1])
+        return "optical radius " + std::to_string(radius).substr(0, 5) +
+               " (sigma_t times the smallest half-extent of its box), where lbl misses outside " +
+               std::to_string(kRefractingLatticeOpticalRadius[0]).substr(0, 1) + " to " +
+               std::to_string(kRefractingLatticeOpticalRadius[1]).substr(0, 1) +
+               " (9-11% from full transport at 0.5, 9-13% at 8)";
     const double albedo = largestAlbedo(o);
     if (albedo > kRefractingLatticeAlbedo)
         return "albedo " + std::to_string(albedo).substr(0, 4) +

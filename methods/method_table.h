@@ -33,11 +33,16 @@ inline constexpr double kLatticeMaxG = 0.5;
 inline constexpr double kMdomMaxG = 0.8;
 // At a refracting boundary lbl stays within the goal on a lone smooth convex
 // object (core/surface_shape.h) up to this albedo and for g in [min, max]
-// (4-8% measured on a sphere, an ellipsoid and a capsule; 8-10% at albedo 0.9,
-// 10% at g 0.15, 14-15% at g 0.3).
+// (docs/results/refraction-shapes.md: 4-10% on a sphere, an ellipsoid and a
+// capsule; 9-13% at albedo 0.95, 9-16% at g 0.3; by hand, 8-10% at albedo 0.9
+// and 10% at g 0.15).
 inline constexpr double kRefractingLatticeAlbedo = 0.8;
 inline constexpr double kRefractingLatticeMinG = -0.3;
 inline constexpr double kRefractingLatticeMaxG = 0.0;
+// ... and an optical radius (sigma_t times the smallest half-extent of its box)
+// in this range (9-11% at 0.5, 9-13% at 8; at 8 a capsule is optically thick,
+// which ss draws index-matched).
+inline constexpr double kRefractingLatticeOpticalRadius[2] = {1.0, 4.0};
 // Up to this many pixels the CPU reference is as fast as ss on a software OpenGL.
 inline constexpr long kReferenceAsFastPixels = 256 * 256;
 

@@ -144,9 +144,11 @@ TEST(MethodTable, AutoFollowsForwardScatteringWithMdomOrThePathTracer) {
     EXPECT_NE(chooseMethod(sceneWith(Rgb(0.9), 64, 0.3)).method, "path");
 }
 
-SceneDesc refracting(const std::string& model, double albedo, double g = 0.0) {
+// The bundled sphere's radius is 1: sigma_t is its optical radius.
+SceneDesc refracting(const std::string& model, double albedo, double g = 0.0, double sigmaT = 2.0) {
     SceneDesc scene = sceneWith(Rgb(albedo), 512, g);
     scene.objects[0].mesh = test::sourceDir() / "models" / model;
+    scene.objects[0].medium.sigmaT = Rgb(sigmaT);
     scene.objects[0].medium.ior = 1.33;
     return scene;
 }
@@ -168,9 +170,14 @@ TEST(MethodTable, AutoTakesLblForARefractingSmoothConvexObject) {
 
 TEST(MethodTable, AutoTakesThePathTracerForRefractingFoldsOfTheView) {
     const std::pair<std::string, SceneDesc> cases[] = {
-        {"sharp edges", refracting("cube.obj", 0.8)},    {"concave parts", refracting("torus.obj", 0.8)},
-        {"concave parts", refracting("bunny.off", 0.8)}, {"albedo 0.95", refracting("sphere.obj", 0.95)},
-        {"g 0.30", refracting("sphere.obj", 0.8, 0.3)},  {"g -0.5", refracting("sphere.obj", 0.8, -0.5)},
+        {"sharp edges", refracting("cube.obj", 0.8)},
+        {"concave parts", refracting("torus.obj", 0.8)},
+        {"concave parts", refracting("bunny.off", 0.8)},
+        {"albedo 0.95", refracting("sphere.obj", 0.95)},
+        {"g 0.30", refracting("sphere.obj", 0.8, 0.3)},
+        {"g -0.5", refracting("sphere.obj", 0.8, -0.5)},
+        {"optical radius 0.5", refracting("sphere.obj", 0.8, 0.0, 0.5)},
+        {"optical radius 8", refracting("sphere.obj", 0.8, 0.0, 8.0)},
     };
     for (const auto& [why, scene] : cases) {
         const MethodChoice c = chooseMethod(scene);
