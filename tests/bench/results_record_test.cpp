@@ -29,10 +29,11 @@ std::string readAll(const fs::path& file) {
 
 // The programs that write records, by the title they give them.
 bool isBenchmark(const std::string& title) {
-    for (const char* name : {"lucent-bench-render", "lucent-bench-preprocess", "lucent-bench-command",
-                             "lucent-bench-hybrid", "lucent-bench-peer", "lucent-bench-gallery", "lucent-bench-path",
-                             "lucent-bench-placement", "lucent-bench-grazing", "lucent-bench-environment",
-                             "lucent-bench-transport", "lucent-bench-scaling", "lucent bench accuracy", "time-ci.sh"})
+    for (const char* name :
+         {"lucent-bench-render", "lucent-bench-preprocess", "lucent-bench-command", "lucent-bench-hybrid",
+          "lucent-bench-peer", "lucent-bench-gallery", "lucent-bench-path", "lucent-bench-placement",
+          "lucent-bench-grazing", "lucent-bench-environment", "lucent-bench-refraction-shapes",
+          "lucent-bench-transport", "lucent-bench-scaling", "lucent bench accuracy", "time-ci.sh"})
         if (title == name) return true;
     return false;
 }
