@@ -132,15 +132,18 @@ std::string refractedViewLimitation(const SurfaceShape& shape) {
         "part of it, nor the camera ray reflected off it, nor a second reflection inside";
     if (smoothConvex(shape))
         return common +
-               ": 3-6% from the refracting reference on a sphere, an ellipsoid and a capsule (smooth and "
-               "convex, as this surface is; 6-9% at g 0.3-0.5)";
+               ": 3-6% from the refracting reference on a sphere, an ellipsoid and a capsule at optical "
+               "radius 1 to 4, 5-8% at 0.5 (smooth and convex, as this surface is; "
+               "docs/results/refraction-shapes.md)";
     return common + ", and draws each point inside once where its " +
            (shape.convex ? std::string(shape.sharpestDegrees >= kCreaseDegrees ? "sharp edges" : "flat faces")
                          : std::string("concave parts")) +
-           " show it twice: 11% from the refracting reference on a lens with a sharp rim, 13-24% on a box with "
-           "rounded edges, 20-25% on a sharp box, 18-19% on a torus, 24-30% on CAD solids with dimples or slots, "
-           "too dark; 12-13% on the wax bunny lit from the front at ior 1.33-1.5 (10-12% over pixel means), and "
-           "25-29% lit from behind (docs/results/refraction-back.md)";
+           " may show it twice, too dark, the more so the thinner the medium: from the refracting reference at "
+           "optical radius 0.5 to 4, 4-10% on a lens with a sharp rim and on a torus (82% on the lens at 0.5 and "
+           "ior 1.5, from two pixels where the light's caustic falls), 5-26% on a box with rounded edges, 9-31% on "
+           "a sharp box, 9-41% on CAD solids with holes, slots, dimples, letters and ribs "
+           "(docs/results/refraction-shapes.md); 12-13% on the wax bunny lit from the front at ior 1.33-1.5 "
+           "(10-12% over pixel means), and 25-29% lit from behind (docs/results/refraction-back.md)";
 }
 
 }  // namespace
@@ -158,8 +161,14 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
                                     : scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
                                         ? "optically thick, each pixel's ray marched"
                                         : "its density varies within the object";
+            // Measured where optically thick solids refract (docs/results/refraction-shapes.md, optical radius 8).
+            const std::string measured = scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
+                                             ? ", 2.2-4.7x too bright where the boundary's light refracts (110-400% "
+                                               "from the refracting reference on solids at optical radius 8)"
+                                             : "";
             out.push_back(object + " is drawn index-matched (" + why +
-                          "): no refraction, no reflection at the boundary (--method path and reference refract)");
+                          "): no refraction, no reflection at the boundary (--method path and reference refract)" +
+                          measured);
             continue;
         }
         out.push_back(object + refractedViewLimitation(surfaceShape(o.objectMesh())));
