@@ -85,13 +85,13 @@ std::string latticeMisses(const SceneDesc& scene, const ObjectDesc& o) {
     const TriangleMesh mesh = loadObjectMesh(o, ignored);
     const SurfaceShape shape = surfaceShape(mesh);
     if (!shape.convex)
-        return "concave parts, through which the refracted view folds (lbl 21% from full transport on a "
-               "torus, 13-16% on the bunny, 32-65% on CAD solids with holes, slots, dimples and ribs)";
+        return "concave parts, through which the refracted view may fold (lbl 7-12% from full transport on a "
+               "torus, 13-16% on the bunny, 19-67% on CAD solids with holes, slots, dimples, letters and ribs)";
     if (shape.sharpestDegrees >= kCreaseDegrees)
-        return "sharp edges, where the refracted view folds (lbl 26% on a lens with a sharp rim, 46-55% on a box)";
+        return "sharp edges, where the refracted view folds (lbl 10-49% on a lens with a sharp rim, 26-60% on a box)";
     if (!smoothConvex(shape))
         return "flat faces, " + percent(shape.largestFlatShare) +
-               " of its area in one, joined by bends that fold the refracted view (lbl 20-29% on a box with rounded "
+               " of its area in one, joined by bends that fold the refracted view (lbl 11-32% on a box with rounded "
                "edges)";
     if (o.medium.density.type != DensityDesc::Type::Constant)
         return "a density that varies, where lbl was measured in constant media alone";
@@ -103,17 +103,18 @@ std::string latticeMisses(const SceneDesc& scene, const ObjectDesc& o) {
                " (sigma_t times the smallest half-extent of its box), where lbl misses outside " +
                std::to_string(kRefractingLatticeOpticalRadius[0]).substr(0, 1) + " to " +
                std::to_string(kRefractingLatticeOpticalRadius[1]).substr(0, 1) +
-               " (9-11% from full transport at 0.5, 9-13% at 8)";
+               " (9-11% from full transport at 0.5, 9-13% at 8 and more where ss draws the object "
+               "optically thick)";
     const double albedo = largestAlbedo(o);
     if (albedo > kRefractingLatticeAlbedo)
         return "albedo " + std::to_string(albedo).substr(0, 4) +
                ", and lbl's light held in by the boundary drifts above albedo " +
                std::to_string(kRefractingLatticeAlbedo).substr(0, 3) +
-               " (8-10% from full transport at 0.9, 11% at 0.95)";
+               " (9-13% from full transport at 0.95; by hand, 8-10% at 0.9)";
     if (o.medium.g > kRefractingLatticeMaxG || o.medium.g < kRefractingLatticeMinG)
         return "g " + std::to_string(o.medium.g).substr(0, 5) +
-               ", and lbl's diffusion inside a reflecting boundary misses forward scattering (10% from full "
-               "transport at g 0.15, 14-15% at 0.3, 33% at 0.5)";
+               ", and lbl's diffusion inside a reflecting boundary misses forward scattering (9-16% from full "
+               "transport at g 0.3; by hand, 10% at 0.15 and 33% at 0.5)";
     if (!available("lbl")) return "a smooth convex surface, but this build has no lbl";
     return {};
 }
@@ -124,8 +125,9 @@ MethodChoice refractingChoice(const SceneDesc& scene, const ObjectDesc& o) {
     const std::string misses = latticeMisses(scene, o);
     if (misses.empty())
         return {"lbl", object +
-                           " and a smooth convex surface: lbl refracts and reflects at its boundary within 4-8% of "
-                           "full transport on a sphere, an ellipsoid and a capsule at ior 1.33-1.7, albedo up to " +
+                           " and a smooth convex surface: lbl refracts and reflects at its boundary within 4-10% of "
+                           "full transport on a sphere, an ellipsoid and a capsule at ior 1.33 and 1.5, optical "
+                           "radius 1 to 4, albedo up to " +
                            std::to_string(kRefractingLatticeAlbedo).substr(0, 3) + " and g from " +
                            std::to_string(kRefractingLatticeMinG).substr(0, 4) + " to " +
                            std::to_string(kRefractingLatticeMaxG).substr(0, 3)};
