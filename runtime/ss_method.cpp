@@ -157,15 +157,14 @@ std::vector<std::string> SsMethod::boundaryLimitations(const LoadedScene& scene,
         const std::string object = "object '" + o.desc().name + "': ior " + std::to_string(ior).substr(0, 4);
         const bool fromFront = attenuatesFromFront(scene.samples[i]);
         if (!drawnRefracted(ior, fromFront, options.tracedLight)) {
+            const bool thick = scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick;
             const std::string why = !options.tracedLight ? "with --light sh"
-                                    : scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
-                                        ? "optically thick, each pixel's ray marched"
-                                        : "its density varies within the object";
+                                    : thick              ? "optically thick, each pixel's ray marched"
+                                                         : "its density varies within the object";
             // Measured where optically thick solids refract (docs/results/refraction-shapes.md, optical radius 8).
-            const std::string measured = scene.samples[i].parameters.scheme == SampleScheme::OpticallyThick
-                                             ? ", 2.2-4.7x too bright where the boundary's light refracts (110-400% "
-                                               "from the refracting reference on solids at optical radius 8)"
-                                             : "";
+            const std::string measured = thick ? ", 2.2-4.7x too bright where the boundary's light refracts (110-400% "
+                                                 "from the refracting reference on solids at optical radius 8)"
+                                               : "";
             out.push_back(object + " is drawn index-matched (" + why +
                           "): no refraction, no reflection at the boundary (--method path and reference refract)" +
                           measured);
